@@ -1,0 +1,27 @@
+// Each subcommand of the `rfrecon` tool registers itself on the application through one of these functions.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace rfrecon::cli {
+
+// Thrown by a command to end with a specific exit code after it has reported what went wrong.
+class CommandFailed : public std::runtime_error {
+ public:
+  CommandFailed(int exit_code, const std::string& message) : std::runtime_error(message), exit_code_(exit_code) {}
+  int exit_code() const { return exit_code_; }
+
+ private:
+  int exit_code_;
+};
+
+// Adds the standard `--devices` option (see host/cl/device_selection.h) to a subcommand that runs kernels.
+CLI::Option* add_devices_option(CLI::App* command, std::string& selection);
+
+void add_devices_command(CLI::App& app);
+void add_selfcheck_command(CLI::App& app);
+
+}  // namespace rfrecon::cli

@@ -1,0 +1,53 @@
+// Outputs that appear whole or not at all: write to a temporary beside the target, then rename.
+#pragma once
+
+#include <filesystem>
+#include <string_view>
+
+namespace rfrecon {
+
+// A temporary path next to `target`; commit() renames it onto target. Destroyed uncommitted, it removes the
+// temporary, so a failed run never leaves a partial file under the final name.
+class AtomicFile {
+ public:
+  explicit AtomicFile(std::filesystem::path target);
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  ~AtomicFile();
+
+  const std::filesystem::path& temp_path() const { return temp_; }
+  const std::filesystem::path& target() const { return target_; }
+  void commit();
+
+ private:
+  std::filesystem::path target_;
+  std::filesystem::path temp_;
+  bool committed_ = false;
+};
+
+// Writes bytes to path through an AtomicFile; throws std::runtime_error naming the path on failure.
+void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
+
+// A staging directory next to `target` for outputs made of many files. commit() moves it into place: a target
+// that does not exist (or is an empty directory) is replaced; an existing non-empty target is replaced only when
+// `replace_existing` is set, and then only after the new one is complete. Destroyed uncommitted, the staging
+// directory is removed and the target is untouched.
+class StagingDirectory {
+ public:
+  StagingDirectory(std::filesystem::path target, bool replace_existing);
+  StagingDirectory(const StagingDirectory&) = delete;
+  StagingDirectory& operator=(const StagingDirectory&) = delete;
+  ~StagingDirectory();
+
+  const std::filesystem::path& path() const { return staging_; }
+  const std::filesystem::path& target() const { return target_; }
+  void commit();
+
+ private:
+  std::filesystem::path target_;
+  std::filesystem::path staging_;
+  bool replace_existing_;
+  bool committed_ = false;
+};
+
+}  // namespace rfrecon

@@ -1,0 +1,40 @@
+// Portability macros for rfrecon kernels: FPGA-only attributes that expand to nothing on CPU and GPU.
+//
+// The host prepends a per-device preamble (host/cl/program_cache.cc) defining RF_DEVICE_CPU, RF_DEVICE_GPU or
+// RF_DEVICE_ACCELERATOR, RF_TARGET_INTEL_FPGA (Intel FPGA SDK, aoc) or RF_TARGET_XILINX_FPGA (Vitis, v++),
+// RF_HAS_FP64 and RF_HAS_FP16. The FPGA compilers define the same targets when they build hw/ binaries.
+//
+//   RF_SINGLE_TASK        before a kernel: it runs as one work-item (a pipelined loop nest on FPGA).
+//   RF_PIPELINE_II(n)     before a loop: ask for initiation interval n (one iteration every n clocks).
+//   RF_UNROLL             before a loop with a constant trip count: unroll it fully.
+//   RF_UNROLL_N(n)        before a loop: unroll by n.
+//   RF_PARTITION_COMPLETE after a private array's name: keep every element in registers (fully partitioned),
+//                         e.g. `float best[K] RF_PARTITION_COMPLETE;`.
+// On PoCL, GPUs and oclgrind all of them are empty, so the same file runs everywhere.
+#ifndef RFRECON_KERNELS_COMMON_TARGET_H
+#define RFRECON_KERNELS_COMMON_TARGET_H
+
+#define RF_STRINGIFY_(x) #x
+#define RF_PRAGMA_(x) _Pragma(RF_STRINGIFY_(x))
+
+#if defined(RF_TARGET_INTEL_FPGA)
+#define RF_SINGLE_TASK __attribute__((max_global_work_dim(0)))
+#define RF_PIPELINE_II(n) RF_PRAGMA_(ii n)
+#define RF_UNROLL RF_PRAGMA_(unroll)
+#define RF_UNROLL_N(n) RF_PRAGMA_(unroll n)
+#define RF_PARTITION_COMPLETE __attribute__((register))
+#elif defined(RF_TARGET_XILINX_FPGA)
+#define RF_SINGLE_TASK __attribute__((reqd_work_group_size(1, 1, 1)))
+#define RF_PIPELINE_II(n) __attribute__((xcl_pipeline_loop(n)))
+#define RF_UNROLL __attribute__((opencl_unroll_hint))
+#define RF_UNROLL_N(n) __attribute__((opencl_unroll_hint(n)))
+#define RF_PARTITION_COMPLETE __attribute__((xcl_array_partition(complete, 1)))
+#else
+#define RF_SINGLE_TASK
+#define RF_PIPELINE_II(n)
+#define RF_UNROLL
+#define RF_UNROLL_N(n)
+#define RF_PARTITION_COMPLETE
+#endif
+
+#endif  // RFRECON_KERNELS_COMMON_TARGET_H
