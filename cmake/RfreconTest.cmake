@@ -1,12 +1,26 @@
-# rfrecon_add_test(NAME SOURCES... [LABELS l...]): one GoogleTest executable registered with ctest.
-# Label "kernel" marks tests that run OpenCL kernels; .ci/run runs those again under oclgrind.
+# rfrecon_add_test(NAME SOURCES... [LABELS l...] [FIXTURES f...]): one GoogleTest executable registered with ctest.
+# Label "kernel" marks tests that run OpenCL kernels (.ci/run runs those again under oclgrind); label "accuracy"
+# marks end-to-end accuracy tests on rendered scenes (skipped in the sanitizer pass for time). FIXTURES names ctest
+# fixtures (e.g. a rendered scene) the tests need.
 include(GoogleTest)
 function(rfrecon_add_test name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "SOURCES;LABELS;FIXTURES" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE rfrecon GTest::gtest GTest::gtest_main GTest::gmock)
   target_compile_options(${name} PRIVATE -Wall -Wextra)
   set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
-  gtest_discover_tests(${name} PROPERTIES LABELS "${ARG_LABELS}" DISCOVERY_TIMEOUT 60
-    WORKING_DIRECTORY ${CMAKE_BINARY_DIR})
+  target_compile_definitions(${name} PRIVATE RFRECON_FIXTURES_DIR="${CMAKE_BINARY_DIR}/fixtures"
+                                             RFRECON_CLI_PATH="$<TARGET_FILE:rfrecon_cli>")
+  add_dependencies(${name} rfrecon_cli)
+  gtest_discover_tests(${name} PROPERTIES LABELS "${ARG_LABELS}" FIXTURES_REQUIRED "${ARG_FIXTURES}"
+    DISCOVERY_TIMEOUT 60 WORKING_DIRECTORY ${CMAKE_BINARY_DIR})
+endfunction()
+
+# rfrecon_add_fixture(NAME COMMAND... [REQUIRES f...]): a ctest fixture setup step (e.g. `rfrecon simulate`), run
+# once before the tests that name it in FIXTURES; labelled "accuracy".
+function(rfrecon_add_fixture name)
+  cmake_parse_arguments(ARG "" "" "COMMAND;REQUIRES" ${ARGN})
+  add_test(NAME fixture_${name} COMMAND ${ARG_COMMAND})
+  set_tests_properties(fixture_${name} PROPERTIES FIXTURES_SETUP ${name} FIXTURES_REQUIRED "${ARG_REQUIRES}"
+    LABELS accuracy TIMEOUT 1200)
 endfunction()

@@ -80,8 +80,8 @@ std::string error_name(cl_int code) {
 namespace {
 std::string describe(const std::string& call, cl_int code, const std::string& file, int line,
                      const std::string& detail) {
-  std::string text = call + " failed: " + error_name(code) + " (" + std::to_string(code) + ") at " + file + ":" +
-                     std::to_string(line);
+  std::string text =
+      call + " failed: " + error_name(code) + " (" + std::to_string(code) + ") at " + file + ":" + std::to_string(line);
   if (!detail.empty()) text += "\n" + detail;
   return text;
 }

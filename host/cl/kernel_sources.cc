@@ -1,7 +1,7 @@
 // Include resolution for embedded kernel sources.
 #include "host/cl/kernel_sources.h"
 
-#include <regex>
+#include <algorithm>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -16,15 +16,29 @@ std::string_view embedded_kernel_file(std::string_view path) {
 }
 
 namespace {
+// The path of a `#include "path"` line, or an empty view for any other line.
+std::string_view quoted_include(std::string_view line) {
+  const auto skip_blanks = [&line] { line.remove_prefix(std::min(line.find_first_not_of(" \t"), line.size())); };
+  skip_blanks();
+  if (line.empty() || line.front() != '#') return {};
+  line.remove_prefix(1);
+  skip_blanks();
+  constexpr std::string_view kInclude = "include";
+  if (line.substr(0, kInclude.size()) != kInclude) return {};
+  line.remove_prefix(kInclude.size());
+  skip_blanks();
+  if (line.empty() || line.front() != '"') return {};
+  const auto close = line.find('"', 1);
+  return close == std::string_view::npos ? std::string_view{} : line.substr(1, close - 1);
+}
+
 void append_resolved(std::string_view path, std::set<std::string, std::less<>>& seen, std::string& out) {
   if (!seen.insert(std::string(path)).second) return;
-  static const std::regex include_line(R"re(^\s*#\s*include\s*"([^"]+)"\s*$)re");
   std::istringstream lines{std::string(embedded_kernel_file(path))};
   std::string line;
-  std::smatch match;
   while (std::getline(lines, line)) {
-    if (std::regex_match(line, match, include_line)) {
-      append_resolved(match[1].str(), seen, out);
+    if (const auto included = quoted_include(line); !included.empty()) {
+      append_resolved(included, seen, out);
     } else {
       out += line;
       out += '\n';

@@ -23,5 +23,10 @@ CLI::Option* add_devices_option(CLI::App* command, std::string& selection);
 
 void add_devices_command(CLI::App& app);
 void add_selfcheck_command(CLI::App& app);
+void add_simulate_command(CLI::App& app);
+void add_patterns_command(CLI::App& app);
+void add_transport_command(CLI::App& app);
+void add_dual_command(CLI::App& app);
+void add_calibrate_commands(CLI::App& app);
 
 }  // namespace rfrecon::cli

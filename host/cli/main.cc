@@ -13,12 +13,6 @@
 
 namespace rfrecon::cli {
 
-CLI::Option* add_devices_option(CLI::App* command, std::string& selection) {
-  return command->add_option("--devices", selection,
-                             "OpenCL devices to use: all|cpu|gpu|fpga|INDEX|NAME, comma-separated "
-                             "(default: $RFRECON_DEVICES, else all)");
-}
-
 namespace {
 int fail(int code, const char* kind, const std::exception& error) {
   spdlog::error("{}: {}", kind, error.what());
@@ -46,6 +40,11 @@ int main(int argc, char** argv) {
 
   add_devices_command(app);
   add_selfcheck_command(app);
+  add_simulate_command(app);
+  add_patterns_command(app);
+  add_transport_command(app);
+  add_dual_command(app);
+  add_calibrate_commands(app);
 
   try {
     app.parse(argc, argv);

@@ -1,13 +1,13 @@
 // Temporary-then-rename file and directory outputs.
 #include "host/common/atomic_file.h"
 
-#include <unistd.h>
-
 #include <atomic>
 #include <fstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
+
+#include <unistd.h>
 
 namespace rfrecon {
 

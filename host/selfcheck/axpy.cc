@@ -21,8 +21,8 @@ std::vector<float> axpy_opencl(cl::DeviceContext& device, cl::ProgramCache& prog
   const auto n = static_cast<cl_uint>(x.size());
   const std::size_t bytes = x.size() * sizeof(float);
   cl_int status = CL_SUCCESS;
-  ::cl::Buffer x_buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes,
-                        const_cast<float*>(x.data()), &status);
+  ::cl::Buffer x_buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes, const_cast<float*>(x.data()),
+                        &status);
   RF_CL_CHECK_CODE(status, "clCreateBuffer(x)");
   ::cl::Buffer y_buffer(device.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, bytes, y.data(), &status);
   RF_CL_CHECK_CODE(status, "clCreateBuffer(y)");

@@ -4,11 +4,12 @@
 #include <vector>
 
 #include "host/cl/device_context.h"
+#include "host/cl/kernel_entry.h"
 #include "host/cl/program_cache.h"
 
 namespace rfrecon::selfcheck {
 
-enum class KernelEntry { kNdRange, kSingleWorkItem };
+using cl::KernelEntry;
 
 // Plain C++ reference: y[i] = fma(a, x[i], y[i]).
 std::vector<float> axpy_reference(float a, const std::vector<float>& x, std::vector<float> y);

@@ -1,10 +1,11 @@
 // Device selection by type, index and name, on whatever OpenCL devices the machine has (PoCL in CI).
+#include "host/cl/device_selection.h"
+
 #include <cstdlib>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "host/cl/device_selection.h"
 #include "host/cl/error.h"
 
 namespace rfrecon::cl {

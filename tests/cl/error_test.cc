@@ -1,8 +1,8 @@
 // ClError and BuildError carry the call, the code's name and the location.
+#include "host/cl/error.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-
-#include "host/cl/error.h"
 
 namespace rfrecon::cl {
 namespace {

@@ -1,8 +1,8 @@
 // Embedded kernel sources are present and their includes are resolved.
+#include "host/cl/kernel_sources.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-
-#include "host/cl/kernel_sources.h"
 
 namespace rfrecon::cl {
 namespace {

@@ -1,0 +1,230 @@
+// Throughput of Gray code decoding and transport compression at full size (camera 1280x1024, projector 1024x768,
+// standard protocol with an 8 x 8 dot grid), C++ reference and OpenCL, against OpenCV structured_light's
+// GrayCodePattern decoding of the same frames and the host's memory-bandwidth roofline (bench/bench_common.h).
+// Prints the ratios after the runs. Frames are synthetic (a plane seen at 0.8 projector pixels per camera pixel).
+#include <cstdio>
+#include <map>
+#include <numeric>
+
+#include <benchmark/benchmark.h>
+#include <opencv2/structured_light.hpp>
+
+#include "bench/bench_common.h"
+#include "host/capture/protocol.h"
+#include "host/cl/device_selection.h"
+#include "host/transport/accumulator.h"
+
+namespace {
+
+using namespace rfrecon;
+
+const cv::Size kCamera(1280, 1024);
+const cv::Size kProjector(1024, 768);
+constexpr int kDotSpacing = 8;
+constexpr int kDotFramesKept = 16;  // dot frames held in memory; the benchmark cycles through them
+
+struct Frames {
+  std::vector<capture::Pattern> gray_sequence;  // make_protocol order: white, black, then the Gray pairs
+  std::vector<cv::Mat> raw;                     // 8-bit, as a camera saves them (for OpenCV)
+  std::vector<cv::Mat> linear;                  // CV_32F, linear [0, 1] (for rfrecon)
+  std::vector<capture::Pattern> dot_patterns;
+  std::vector<cv::Mat> dots;  // CV_32F
+};
+
+// Camera pixel (u, v) sees projector pixel (0.8 u, 0.75 v): value 0.8 * lit + 0.03 ambient, 1 DN noise, 8 bits.
+cv::Mat render(const capture::Pattern& pattern, cv::RNG& random) {
+  const cv::Mat projected = capture::render_pattern(pattern, kProjector, kDotSpacing);
+  cv::Mat noise(kCamera, CV_32F);
+  random.fill(noise, cv::RNG::NORMAL, 0.0, 1.0);
+  cv::Mat frame(kCamera, CV_8U);
+  for (int v = 0; v < kCamera.height; ++v) {
+    const auto* row = projected.ptr<unsigned char>(static_cast<int>(0.75 * v));
+    for (int u = 0; u < kCamera.width; ++u) {
+      const double reading = 255.0 * (0.8 * row[static_cast<int>(0.8 * u)] / 255.0 + 0.03) + noise.at<float>(v, u);
+      frame.at<unsigned char>(v, u) = cv::saturate_cast<unsigned char>(reading);
+    }
+  }
+  return frame;
+}
+
+const Frames& frames() {
+  static const Frames instance = [] {
+    Frames f;
+    cv::RNG random(1);
+    for (const auto& pattern : capture::make_protocol({kProjector, kDotSpacing})) {
+      if (pattern.kind == capture::PatternKind::kDot) {
+        if (f.dots.size() == kDotFramesKept) continue;
+        cv::Mat linear;
+        render(pattern, random).convertTo(linear, CV_32F, 1.0 / 255.0);
+        f.dot_patterns.push_back(pattern);
+        f.dots.push_back(linear);
+        continue;
+      }
+      f.gray_sequence.push_back(pattern);
+      f.raw.push_back(render(pattern, random));
+      cv::Mat linear;
+      f.raw.back().convertTo(linear, CV_32F, 1.0 / 255.0);
+      f.linear.push_back(linear);
+    }
+    return f;
+  }();
+  return instance;
+}
+
+transport::TransportSetup setup() {
+  transport::TransportSetup s;
+  s.camera_size = kCamera;
+  s.projector_size = kProjector;
+  s.dot_spacing = kDotSpacing;
+  return s;
+}
+
+double frame_bytes() { return static_cast<double>(kCamera.area()) * sizeof(float); }
+
+// GB/s counts the camera frames processed as float (4 bytes per pixel, OpenCV's 8-bit frames included), so every
+// benchmark is measured on the same bytes; roofline_fraction divides it by the host's streaming bandwidth.
+void set_counters(benchmark::State& state, double frames_per_iteration, double bytes_per_iteration) {
+  const auto iterations = static_cast<double>(state.iterations());
+  state.counters["frames/s"] = benchmark::Counter(frames_per_iteration * iterations, benchmark::Counter::kIsRate);
+  rfrecon::bench::set_bandwidth_counters(state, bytes_per_iteration);
+}
+
+void decode(transport::TransportAccumulator& accumulator) {
+  const auto& f = frames();
+  for (std::size_t i = 2; i < f.gray_sequence.size(); i += 2) {
+    const auto& pattern = f.gray_sequence[i];
+    const auto axis =
+        pattern.kind == capture::PatternKind::kGrayColumn ? transport::GrayAxis::kColumns : transport::GrayAxis::kRows;
+    accumulator.add_gray_pair(axis, pattern.bit, f.linear[i], f.linear[i + 1]);
+  }
+  accumulator.finish_gray(f.linear[0], f.linear[1]);
+}
+
+rfrecon::cl::DeviceContext& device() {
+  static std::vector<rfrecon::cl::DeviceContext> devices = rfrecon::cl::open_devices("");
+  return devices.front();
+}
+rfrecon::cl::ProgramCache& programs() {
+  static rfrecon::cl::ProgramCache cache;
+  return cache;
+}
+
+void BM_DecodeReference(benchmark::State& state) {
+  const auto& f = frames();
+  for (auto _ : state) {
+    auto accumulator = transport::make_reference_accumulator(setup());
+    decode(*accumulator);
+  }
+  set_counters(state, static_cast<double>(f.linear.size()), f.linear.size() * frame_bytes());
+}
+
+void BM_DecodeOpenCL(benchmark::State& state) {
+  const auto& f = frames();
+  const auto entry = transport::KernelEntry::kNdRange;
+  auto accumulator = transport::make_device_accumulator(setup(), device(), programs(), entry);  // builds kernels
+  for (auto _ : state) {
+    state.PauseTiming();
+    accumulator = transport::make_device_accumulator(setup(), device(), programs(), entry);
+    state.ResumeTiming();
+    decode(*accumulator);  // uploads every frame and waits for each kernel
+  }
+  set_counters(state, static_cast<double>(f.linear.size()), f.linear.size() * frame_bytes());
+}
+
+// OpenCV's single-camera decoding: shadow mask from white/black (black threshold), then getProjPixel per pixel.
+void BM_DecodeOpenCV(benchmark::State& state) {
+  const auto& f = frames();
+  cv::structured_light::GrayCodePattern::Params params;
+  params.width = kProjector.width;
+  params.height = kProjector.height;
+  auto graycode = cv::structured_light::GrayCodePattern::create(params);
+  graycode->setBlackThreshold(10);  // rfrecon's defaults in 8-bit numbers
+  graycode->setWhiteThreshold(5);
+  const std::vector<cv::Mat> patterns(f.raw.begin() + 2, f.raw.end());
+  cv::Mat x_map(kCamera, CV_32S), y_map(kCamera, CV_32S);
+  for (auto _ : state) {
+    const cv::Mat lit = (f.raw[0] - f.raw[1]) > 10;
+    for (int v = 0; v < kCamera.height; ++v) {
+      for (int u = 0; u < kCamera.width; ++u) {
+        cv::Point projector(-1, -1);
+        if (lit.at<unsigned char>(v, u) != 0 && !graycode->getProjPixel(patterns, u, v, projector)) {
+          x_map.at<int>(v, u) = projector.x;
+          y_map.at<int>(v, u) = projector.y;
+        }
+      }
+    }
+    benchmark::DoNotOptimize(x_map.data);
+  }
+  set_counters(state, static_cast<double>(f.raw.size()), f.raw.size() * frame_bytes());
+}
+
+template <typename MakeAccumulator>
+void compress(benchmark::State& state, MakeAccumulator make) {
+  const auto& f = frames();
+  auto accumulator = make();
+  decode(*accumulator);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const auto& pattern = f.dot_patterns[i % f.dots.size()];
+    accumulator->add_dot_frame(pattern.dot_offset_x, pattern.dot_offset_y, f.dots[i % f.dots.size()]);
+    ++i;
+  }
+  set_counters(state, 1.0, frame_bytes());
+}
+
+void BM_CompressReference(benchmark::State& state) {
+  compress(state, [] { return transport::make_reference_accumulator(setup()); });
+}
+
+void BM_CompressOpenCL(benchmark::State& state) {
+  const auto entry = transport::KernelEntry::kNdRange;
+  compress(state, [&] { return transport::make_device_accumulator(setup(), device(), programs(), entry); });
+}
+
+// Wall-clock rates throughout (the OpenCL runs spend their time in PoCL's threads, not the calling one).
+BENCHMARK(BM_DecodeReference)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
+BENCHMARK(BM_DecodeOpenCL)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
+BENCHMARK(BM_DecodeOpenCV)->Unit(benchmark::kMillisecond)->Iterations(2)->UseRealTime();
+BENCHMARK(BM_CompressReference)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
+BENCHMARK(BM_CompressOpenCL)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
+
+// Console output plus the real time per iteration of each benchmark, for the ratios.
+class RecordingReporter : public benchmark::ConsoleReporter {
+ public:
+  void ReportRuns(const std::vector<Run>& runs) override {
+    for (const auto& run : runs) {
+      seconds_[run.run_name.function_name] = run.GetAdjustedRealTime() / 1e3;  // reported in ms
+      const auto roofline = run.counters.find("roofline_fraction");
+      roofline_[run.run_name.function_name] = roofline != run.counters.end() ? double(roofline->second) : 0.0;
+    }
+    ConsoleReporter::ReportRuns(runs);
+  }
+  double roofline(const std::string& name) const { return roofline_.count(name) != 0 ? roofline_.at(name) : 0.0; }
+  double seconds(const std::string& name) const { return seconds_.count(name) != 0 ? seconds_.at(name) : 0.0; }
+
+ private:
+  std::map<std::string, double> seconds_;
+  std::map<std::string, double> roofline_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  RecordingReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  const auto ratio = [](double a, double b) { return b > 0.0 ? a / b : 0.0; };
+  const double opencv = reporter.seconds("BM_DecodeOpenCV");
+  std::printf("\nspeed-up over OpenCV GrayCodePattern decoding (same frames): reference %.1fx, OpenCL %.1fx\n",
+              ratio(opencv, reporter.seconds("BM_DecodeReference")),
+              ratio(opencv, reporter.seconds("BM_DecodeOpenCL")));
+  std::printf(
+      "fraction of the host streaming roofline (%.2f GB/s): decode reference %.2f, decode OpenCL %.2f, "
+      "compress reference %.2f, compress OpenCL %.2f\n",
+      rfrecon::bench::host_stream_bytes_per_second() / 1e9, reporter.roofline("BM_DecodeReference"),
+      reporter.roofline("BM_DecodeOpenCL"), reporter.roofline("BM_CompressReference"),
+      reporter.roofline("BM_CompressOpenCL"));
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,92 @@
+// Corner detection with OpenCV calib3d, and hole filling for dual images.
+#include "calib/board_detection.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace rfrecon::calib {
+
+std::vector<cv::Point3f> board_object_points(const BoardSpec& board) {
+  std::vector<cv::Point3f> points;
+  points.reserve(static_cast<std::size_t>(board.cols * board.rows));
+  for (int row = 0; row < board.rows; ++row) {
+    for (int col = 0; col < board.cols; ++col) {
+      points.emplace_back(static_cast<float>(col * board.square_size), static_cast<float>(row * board.square_size),
+                          0.0f);
+    }
+  }
+  return points;
+}
+
+cv::Mat to_detection_image(const cv::Mat& image) {
+  if (image.depth() == CV_8U && image.channels() == 1) return image;
+  cv::Mat gray;
+  if (image.channels() == 1) {
+    image.convertTo(gray, CV_32F);
+  } else {
+    cv::Mat converted;
+    image.convertTo(converted, CV_32F);
+    cv::cvtColor(converted, gray, cv::COLOR_BGR2GRAY);
+  }
+  std::vector<float> values;
+  values.reserve(gray.total());
+  for (auto it = gray.begin<float>(); it != gray.end<float>(); ++it) {
+    if (std::isfinite(*it)) values.push_back(*it);
+  }
+  float high = 1.0f;
+  if (!values.empty()) {
+    const auto rank = static_cast<std::size_t>(0.995 * static_cast<double>(values.size() - 1));
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank), values.end());
+    high = std::max(values[rank], 1e-12f);
+  }
+  cv::patchNaNs(gray, 0.0);
+  cv::Mat out;
+  gray.convertTo(out, CV_8U, 255.0 / high);
+  return out;
+}
+
+std::vector<cv::Point2f> find_board_corners(const cv::Mat& image, const BoardSpec& board) {
+  const cv::Mat gray = to_detection_image(image);
+  std::vector<cv::Point2f> corners;
+  const cv::Size pattern(board.cols, board.rows);
+  if (cv::findChessboardCornersSB(gray, pattern, corners, cv::CALIB_CB_EXHAUSTIVE | cv::CALIB_CB_ACCURACY)) {
+    return corners;
+  }
+  // The classic detector with cornerSubPix finds some boards the sector detector misses (strong perspective).
+  corners.clear();
+  if (!cv::findChessboardCorners(gray, pattern, corners, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE)) {
+    return {};
+  }
+  cv::cornerSubPix(gray, corners, cv::Size(5, 5), cv::Size(-1, -1),
+                   cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 50, 1e-3));
+  return corners;
+}
+
+cv::Mat fill_dual_image_holes(const cv::Mat& dual, const cv::Mat& reached) {
+  cv::Mat values;
+  dual.convertTo(values, CV_32F);
+  const cv::Mat covered = (reached != 0) & (values == values);  // NaN != NaN
+  values.setTo(0.0f, ~covered);
+  // Gaps are unreached pixels inside the reached region: what a morphological closing adds. Wide unreached areas
+  // (dark squares whose transport fell below the noise threshold, the background) are not gaps and stay as they are.
+  cv::Mat closed;
+  cv::morphologyEx(covered, closed, cv::MORPH_CLOSE,
+                   cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(kMaxGapPx * 2 + 1, kMaxGapPx * 2 + 1)));
+  const cv::Mat gaps = closed & ~covered;
+  cv::Mat weight;
+  covered.convertTo(weight, CV_32F, 1.0 / 255.0);
+  cv::Mat blurred_values;
+  cv::Mat blurred_weight;
+  constexpr double kSigmaPx = 1.0;
+  cv::GaussianBlur(values, blurred_values, cv::Size(), kSigmaPx);
+  cv::GaussianBlur(weight, blurred_weight, cv::Size(), kSigmaPx);
+  cv::Mat interpolated;
+  cv::divide(blurred_values, cv::max(blurred_weight, 1e-6), interpolated);
+  interpolated.copyTo(values, gaps);
+  return values;
+}
+
+}  // namespace rfrecon::calib

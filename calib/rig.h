@@ -1,0 +1,50 @@
+// The stereo rig file (rig.yaml): camera and projector intrinsics, their relative pose and rectification, as an
+// OpenCV FileStorage YAML that the calibration stage writes, the synthetic rig writes as ground truth, and the
+// reconstruction stage reads. Loadable from Python with cv2.FileStorage. Format documented in docs/sim.md.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace rfrecon::calib {
+
+struct BoardSpec {
+  int cols = 0;              // inner corners along the board's x axis
+  int rows = 0;              // inner corners along the board's y axis
+  double square_size = 0.0;  // mm
+};
+
+// Projector pose: X_proj = R X_cam + T (cv::stereoCalibrate convention); lengths in millimetres.
+// All matrices are CV_64F.
+struct StereoRig {
+  cv::Size camera_size;
+  cv::Size projector_size;
+  cv::Mat camera_matrix;                // 3x3
+  cv::Mat dist_coeffs;                  // 1x5: k1 k2 p1 p2 k3 (OpenCV order; 1x4, 1x8, 1x12, 1x14 also accepted)
+  cv::Mat projector_matrix;             // 3x3
+  cv::Mat projector_dist_coeffs;        // 1xN as dist_coeffs
+  cv::Mat R;                            // 3x3, projector from camera
+  cv::Mat T;                            // 3x1, projector from camera, mm
+  cv::Mat E, F;                         // 3x3 essential and fundamental matrices
+  cv::Mat R1, R2, P1, P2, Q;            // cv::stereoRectify outputs (3x3, 3x3, 3x4, 3x4, 4x4)
+  double rms = 0.0;                     // reprojection RMS of the calibration, px (0 for ground truth)
+  std::vector<double> per_view_errors;  // px per board pose (empty for ground truth)
+  BoardSpec board;
+};
+
+// The alpha passed to cv::stereoRectify: 1, so that every pixel of both original images stays inside the rectified
+// images (nothing the camera or projector saw is cropped away; rectified images may have black borders).
+inline constexpr double kRectifyAlpha = 1.0;
+
+// Fills E, F, R1, R2, P1, P2 and Q from the intrinsics, R and T (rectified image size = camera_size).
+void compute_stereo_geometry(StereoRig& rig);
+
+// Writes the rig atomically. Throws InputError when a matrix has the wrong size.
+void write_rig(const StereoRig& rig, const std::filesystem::path& file);
+
+// Reads a rig file; throws InputError naming the file and the key when a key is missing or mis-sized.
+StereoRig read_rig(const std::filesystem::path& file);
+
+}  // namespace rfrecon::calib

@@ -1,0 +1,279 @@
+// Reading, writing and validating capture manifests, and loading linearized frames.
+#include "host/capture/manifest.h"
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "host/common/atomic_file.h"
+#include "host/common/errors.h"
+
+namespace rfrecon::capture {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+constexpr int kManifestVersion = 1;
+
+// The g of "gamma:<g>", or 1 for "linear"; throws InputError for anything else.
+double response_gamma(const std::string& response, const std::string& file) {
+  if (response == "linear") return 1.0;
+  const std::string prefix = "gamma:";
+  if (response.rfind(prefix, 0) == 0) {
+    try {
+      const double gamma = std::stod(response.substr(prefix.size()));
+      if (gamma > 0.0) return gamma;
+    } catch (const std::exception&) {
+    }
+  }
+  throw InputError(file + ": camera_response '" + response + "' is not 'linear' or 'gamma:<g>' with g > 0");
+}
+
+json size_to_json(cv::Size size) { return json::array({size.width, size.height}); }
+
+json frame_to_json(const Frame& frame) {
+  json item{{"file", frame.file}, {"pattern", to_string(frame.pattern.kind)}};
+  if (frame.pattern.kind == PatternKind::kGrayColumn || frame.pattern.kind == PatternKind::kGrayRow) {
+    item["bit"] = frame.pattern.bit;
+    item["inverse"] = frame.pattern.inverse;
+  } else if (frame.pattern.kind == PatternKind::kDot) {
+    item["dot_offset"] = json::array({frame.pattern.dot_offset_x, frame.pattern.dot_offset_y});
+  }
+  return item;
+}
+
+// Reads a field with a message naming the manifest and the field when it is missing or of the wrong type.
+template <typename T>
+T field(const json& object, const std::string& key, const std::string& where, const fs::path& file) {
+  if (!object.contains(key)) throw InputError(file.string() + ": missing field '" + where + key + "'");
+  try {
+    return object.at(key).get<T>();
+  } catch (const json::exception& error) {
+    throw InputError(file.string() + ": field '" + where + key + "' has the wrong type (" + error.what() + ")");
+  }
+}
+
+cv::Size size_field(const json& object, const std::string& key, const fs::path& file) {
+  const auto values = field<std::vector<int>>(object, key, "", file);
+  if (values.size() != 2 || values[0] < 0 || values[1] < 0) {
+    throw InputError(file.string() + ": field '" + key + "' must be [width, height] with non-negative values");
+  }
+  return {values[0], values[1]};
+}
+
+Frame frame_from_json(const json& item, std::size_t index, const fs::path& file) {
+  const std::string where = "frames[" + std::to_string(index) + "].";
+  Frame frame;
+  frame.file = field<std::string>(item, "file", where, file);
+  try {
+    frame.pattern.kind = pattern_kind_from_string(field<std::string>(item, "pattern", where, file));
+  } catch (const InputError& error) {
+    throw InputError(file.string() + ": " + where + "pattern: " + error.what());
+  }
+  if (frame.pattern.kind == PatternKind::kGrayColumn || frame.pattern.kind == PatternKind::kGrayRow) {
+    frame.pattern.bit = field<int>(item, "bit", where, file);
+    frame.pattern.inverse = field<bool>(item, "inverse", where, file);
+  } else if (frame.pattern.kind == PatternKind::kDot) {
+    const auto offset = field<std::vector<int>>(item, "dot_offset", where, file);
+    if (offset.size() != 2) throw InputError(file.string() + ": " + where + "dot_offset must be [x, y]");
+    frame.pattern.dot_offset_x = offset[0];
+    frame.pattern.dot_offset_y = offset[1];
+  }
+  return frame;
+}
+
+// Checks that the frames form a complete protocol for the projector size: one white, one black, every Gray code
+// bit of both axes with its inverse, and (with a dot grid) every offset once.
+void validate(const CaptureManifest& manifest, const fs::path& file) {
+  const auto fail = [&](const std::string& what) { throw InputError(file.string() + ": " + what); };
+  if (manifest.projector_size.width < 2 || manifest.projector_size.height < 2) {
+    fail("projector_size must be at least 2x2");
+  }
+  if (manifest.bit_depth != 8 && manifest.bit_depth != 10 && manifest.bit_depth != 12 && manifest.bit_depth != 16) {
+    fail("bit_depth must be 8, 10, 12 or 16, got " + std::to_string(manifest.bit_depth));
+  }
+  const double full_scale = std::ldexp(1.0, manifest.bit_depth) - 1.0;
+  if (manifest.black_level < 0 || manifest.black_level >= full_scale) {
+    fail("black_level must be in [0, " + std::to_string(full_scale) + ")");
+  }
+  if (manifest.dot_spacing < 0 || manifest.dot_spacing == 1) fail("dot_spacing must be 0 or at least 2");
+  (void)response_gamma(manifest.camera_response, file.string());
+  std::map<PatternKind, int> plain_count;
+  std::set<std::tuple<int, int, bool>> gray_seen;
+  std::set<std::pair<int, int>> dots_seen;
+  const int column_bits = gray_bits(manifest.projector_size.width);
+  const int row_bits = gray_bits(manifest.projector_size.height);
+  for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
+    const auto& pattern = manifest.frames[i].pattern;
+    const std::string where = "frames[" + std::to_string(i) + "] (" + manifest.frames[i].file + "): ";
+    switch (pattern.kind) {
+      case PatternKind::kWhite:
+      case PatternKind::kBlack:
+        ++plain_count[pattern.kind];
+        break;
+      case PatternKind::kGrayColumn:
+      case PatternKind::kGrayRow: {
+        const bool columns = pattern.kind == PatternKind::kGrayColumn;
+        const int bits = columns ? column_bits : row_bits;
+        if (pattern.bit < 0 || pattern.bit >= bits) {
+          fail(where + "Gray code bit " + std::to_string(pattern.bit) + " does not exist for a projector " +
+               (columns ? "width of " + std::to_string(manifest.projector_size.width)
+                        : "height of " + std::to_string(manifest.projector_size.height)) +
+               " (" + std::to_string(bits) + " bits)");
+        }
+        if (!gray_seen.insert({columns ? 0 : 1, pattern.bit, pattern.inverse}).second) fail(where + "repeated frame");
+        break;
+      }
+      case PatternKind::kDot:
+        if (manifest.dot_spacing == 0) fail(where + "dot frame but dot_spacing is 0");
+        if (pattern.dot_offset_x < 0 || pattern.dot_offset_x >= manifest.dot_spacing || pattern.dot_offset_y < 0 ||
+            pattern.dot_offset_y >= manifest.dot_spacing) {
+          fail(where + "dot_offset outside [0, dot_spacing)");
+        }
+        if (!dots_seen.insert({pattern.dot_offset_x, pattern.dot_offset_y}).second) fail(where + "repeated frame");
+        break;
+    }
+  }
+  if (plain_count[PatternKind::kWhite] != 1 || plain_count[PatternKind::kBlack] != 1) {
+    fail("needs exactly one white and one black frame");
+  }
+  if (gray_seen.size() != static_cast<std::size_t>(2 * (column_bits + row_bits))) {
+    fail("incomplete Gray code: " + std::to_string(gray_seen.size()) + " of " +
+         std::to_string(2 * (column_bits + row_bits)) + " frames for a " +
+         std::to_string(manifest.projector_size.width) + "x" + std::to_string(manifest.projector_size.height) +
+         " projector");
+  }
+  if (dots_seen.size() != static_cast<std::size_t>(manifest.dot_spacing * manifest.dot_spacing)) {
+    fail("incomplete dot grid: " + std::to_string(dots_seen.size()) + " of " +
+         std::to_string(manifest.dot_spacing * manifest.dot_spacing) + " frames");
+  }
+}
+
+void check_files_exist(const CaptureManifest& manifest, const fs::path& dir, const fs::path& file) {
+  for (const auto& frame : manifest.frames) {
+    if (!fs::is_regular_file(dir / frame.file)) {
+      throw InputError("missing frame: " + (dir / frame.file).string() + " (listed in " + file.string() + ")");
+    }
+  }
+}
+}  // namespace
+
+CaptureManifest read_manifest(const fs::path& capture_dir) {
+  const fs::path file = capture_dir / kManifestFileName;
+  std::ifstream in(file);
+  if (!in) {
+    throw InputError("cannot read " + file.string() +
+                     " (a capture directory needs a manifest; for OpenCV-style captures pass --layout "
+                     "opencv-graycode --projector WxH)");
+  }
+  json root;
+  try {
+    root = json::parse(in);
+  } catch (const json::parse_error& error) {
+    throw InputError(file.string() + ": not valid JSON (" + error.what() + ")");
+  }
+  if (!root.is_object()) throw InputError(file.string() + ": the top level must be a JSON object");
+  const int version = field<int>(root, "version", "", file);
+  if (version != kManifestVersion) {
+    throw InputError(file.string() + ": manifest version " + std::to_string(version) + " is not supported (expected " +
+                     std::to_string(kManifestVersion) + ")");
+  }
+  CaptureManifest manifest;
+  manifest.projector_size = size_field(root, "projector_size", file);
+  manifest.camera_size = root.contains("camera_size") ? size_field(root, "camera_size", file) : cv::Size();
+  manifest.dot_spacing = root.value("dot_spacing", 0);
+  manifest.bit_depth = root.value("bit_depth", 8);
+  manifest.black_level = root.value("black_level", 0.0);
+  manifest.camera_response = root.value("camera_response", std::string("linear"));
+  const auto frames = field<json>(root, "frames", "", file);
+  if (!frames.is_array()) throw InputError(file.string() + ": field 'frames' must be an array");
+  for (std::size_t i = 0; i < frames.size(); ++i) manifest.frames.push_back(frame_from_json(frames[i], i, file));
+  validate(manifest, file);
+  check_files_exist(manifest, capture_dir, file);
+  return manifest;
+}
+
+void write_manifest(const CaptureManifest& manifest, const fs::path& capture_dir) {
+  json frames = json::array();
+  for (const auto& frame : manifest.frames) frames.push_back(frame_to_json(frame));
+  const json root{{"format", "rfrecon-capture"},
+                  {"version", kManifestVersion},
+                  {"projector_size", size_to_json(manifest.projector_size)},
+                  {"camera_size", size_to_json(manifest.camera_size)},
+                  {"dot_spacing", manifest.dot_spacing},
+                  {"bit_depth", manifest.bit_depth},
+                  {"black_level", manifest.black_level},
+                  {"camera_response", manifest.camera_response},
+                  {"frames", frames}};
+  write_file_atomically(capture_dir / kManifestFileName, root.dump(2) + "\n");
+}
+
+CaptureManifest manifest_from_opencv_layout(const fs::path& capture_dir, cv::Size projector_size) {
+  static const std::set<std::string> kImageExtensions{".png", ".tif", ".tiff", ".bmp", ".jpg", ".jpeg", ".pgm", ".ppm"};
+  if (!fs::is_directory(capture_dir)) throw InputError("capture directory " + capture_dir.string() + " does not exist");
+  std::vector<std::string> files;
+  for (const auto& entry : fs::directory_iterator(capture_dir)) {
+    std::string extension = entry.path().extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
+    if (entry.is_regular_file() && kImageExtensions.count(extension) != 0) {
+      files.push_back(entry.path().filename().string());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  const auto sequence = opencv_graycode_protocol(projector_size);
+  if (files.size() != sequence.size()) {
+    throw InputError(capture_dir.string() + ": the opencv-graycode layout for a " +
+                     std::to_string(projector_size.width) + "x" + std::to_string(projector_size.height) +
+                     " projector needs " + std::to_string(sequence.size()) +
+                     " images (Gray code pairs, white, black)," + " found " + std::to_string(files.size()));
+  }
+  CaptureManifest manifest;
+  manifest.projector_size = projector_size;
+  for (std::size_t i = 0; i < files.size(); ++i) manifest.frames.push_back({sequence[i], files[i]});
+  const cv::Mat first = cv::imread((capture_dir / files.front()).string(), cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
+  if (first.empty()) throw InputError("cannot read image " + (capture_dir / files.front()).string());
+  manifest.bit_depth = first.depth() == CV_8U ? 8 : 16;
+  manifest.camera_size = first.size();
+  return manifest;
+}
+
+cv::Mat linearize_frame(const cv::Mat& raw, const CaptureManifest& manifest, const std::string& file) {
+  const int expected_depth = manifest.bit_depth == 8 ? CV_8U : CV_16U;
+  if (raw.depth() != expected_depth) {
+    throw InputError(file + ": " +
+                     (raw.depth() == CV_8U    ? "8"
+                      : raw.depth() == CV_16U ? "16"
+                                              : "non-integer") +
+                     "-bit samples, but the manifest says bit_depth " + std::to_string(manifest.bit_depth));
+  }
+  if (raw.channels() != 1) throw InputError(file + ": expected a single-channel image");
+  if (!manifest.camera_size.empty() && raw.size() != manifest.camera_size) {
+    throw InputError(file + ": size " + std::to_string(raw.cols) + "x" + std::to_string(raw.rows) +
+                     " differs from the capture's camera size " + std::to_string(manifest.camera_size.width) + "x" +
+                     std::to_string(manifest.camera_size.height));
+  }
+  const double full_scale = std::ldexp(1.0, manifest.bit_depth) - 1.0;
+  cv::Mat linear;
+  raw.convertTo(linear, CV_32F, 1.0 / (full_scale - manifest.black_level),
+                -manifest.black_level / (full_scale - manifest.black_level));
+  const double gamma = response_gamma(manifest.camera_response, file);
+  if (gamma == 1.0) return linear;
+  linear.forEach<float>([gamma](float& value, const int*) {
+    value = std::copysign(static_cast<float>(std::pow(std::abs(value), gamma)), value);
+  });
+  return linear;
+}
+
+cv::Mat load_frame(const fs::path& capture_dir, const CaptureManifest& manifest, std::size_t index) {
+  const fs::path path = capture_dir / manifest.frames.at(index).file;
+  const cv::Mat raw = cv::imread(path.string(), cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
+  if (raw.empty()) throw InputError("cannot read image " + path.string() + " (missing, unreadable or not an image)");
+  return linearize_frame(raw, manifest, path.string());
+}
+
+}  // namespace rfrecon::capture

@@ -1,0 +1,53 @@
+// The capture manifest (manifest.json): what a capture directory holds and how to read its frames.
+// Written by `rfrecon patterns` (projector side) and by the synthetic rig (camera side); read by every stage.
+// Format documented in docs/formats.md.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "host/capture/protocol.h"
+
+namespace rfrecon::capture {
+
+inline constexpr const char* kManifestFileName = "manifest.json";
+
+struct Frame {
+  Pattern pattern;
+  std::string file;  // relative to the capture directory
+};
+
+struct CaptureManifest {
+  cv::Size projector_size;
+  cv::Size camera_size;                    // {0, 0} in a projector-side (patterns) manifest
+  int dot_spacing = 0;                     // 0 when there is no dot grid
+  int bit_depth = 8;                       // bits per camera sample: 8, 10, 12 or 16 (stored in 8- or 16-bit files)
+  double black_level = 0.0;                // camera reading with no light, in digital numbers
+  std::string camera_response = "linear";  // "linear" or "gamma:<g>" (reading = linear^(1/g))
+  std::vector<Frame> frames;
+};
+
+// Reads DIR/manifest.json; throws InputError naming the file and the field when it is malformed or inconsistent
+// (e.g. Gray code bit count that does not match the projector size).
+CaptureManifest read_manifest(const std::filesystem::path& capture_dir);
+
+// Writes DIR/manifest.json atomically.
+void write_manifest(const CaptureManifest& manifest, const std::filesystem::path& capture_dir);
+
+// A manifest for a directory without one, laid out as OpenCV capture scripts save it (`--layout opencv-graycode`):
+// image files sorted by name are opencv_graycode_protocol(projector_size). Throws InputError when the file count
+// does not match.
+CaptureManifest manifest_from_opencv_layout(const std::filesystem::path& capture_dir, cv::Size projector_size);
+
+// Linear camera response in [0, 1] (black level removed, response curve undone) from a raw frame (CV_8U/CV_16U).
+// Throws InputError naming `file` when its size or depth does not match the manifest.
+cv::Mat linearize_frame(const cv::Mat& raw, const CaptureManifest& manifest, const std::string& file);
+
+// Reads one frame of the manifest (any format imgcodecs reads) and returns it linearized (CV_32F, [0, 1]).
+// Throws InputError naming the file when it is missing, unreadable, mis-sized or of the wrong bit depth.
+cv::Mat load_frame(const std::filesystem::path& capture_dir, const CaptureManifest& manifest, std::size_t index);
+
+}  // namespace rfrecon::capture

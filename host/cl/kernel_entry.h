@@ -1,0 +1,8 @@
+// Which entry of a kernel runs: one work-item per pixel or row (CPU, GPU) or a single work-item loop (FPGA).
+#pragma once
+
+namespace rfrecon::cl {
+
+enum class KernelEntry { kNdRange, kSingleWorkItem };
+
+}  // namespace rfrecon::cl

@@ -1,0 +1,41 @@
+// Streams capture frames into a compressed T: Gray code pairs, then white/black, then dot frames, one at a time.
+// Two implementations share this interface: the plain C++ reference and the OpenCL kernels on one device.
+#pragma once
+
+#include <memory>
+
+#include <opencv2/core.hpp>
+
+#include "host/cl/device_context.h"
+#include "host/cl/program_cache.h"
+#include "host/transport/transport_types.h"
+
+namespace rfrecon::transport {
+
+enum class GrayAxis { kColumns, kRows };
+
+// Frames are linear CV_32F camera images of setup.camera_size (host/capture/manifest.h load_frame).
+// Call order: add_gray_pair for every pair (any order), finish_gray, add_dot_frame for every offset, finish.
+class TransportAccumulator {
+ public:
+  virtual ~TransportAccumulator() = default;
+  // One Gray code pair; `bit` counts from the most significant (OpenCV order).
+  virtual void add_gray_pair(GrayAxis axis, int bit, const cv::Mat& pattern, const cv::Mat& inverse) = 0;
+  // Shadow mask from white/black, Gray -> binary, range check. Keeps black for the dot frames.
+  virtual void finish_gray(const cv::Mat& white, const cv::Mat& black) = 0;
+  // One dot-grid frame lighting projector pixels with x % s == offset_x and y % s == offset_y.
+  virtual void add_dot_frame(int offset_x, int offset_y, const cv::Mat& frame) = 0;
+  // Correspondences (and the single entry of Gray-only captures); returns the whole compressed T.
+  virtual CompressedTransport finish() = 0;
+};
+
+// The bit mask of Gray bit `bit` (0 = most significant) in an axis code word.
+std::uint32_t gray_bit_mask(const TransportSetup& setup, GrayAxis axis, int bit);
+
+std::unique_ptr<TransportAccumulator> make_reference_accumulator(const TransportSetup& setup);
+
+// Kernels of kernels/transport/decode.cl and compress.cl; the ELL state stays on the device until finish().
+std::unique_ptr<TransportAccumulator> make_device_accumulator(const TransportSetup& setup, cl::DeviceContext& device,
+                                                              cl::ProgramCache& programs, KernelEntry entry);
+
+}  // namespace rfrecon::transport

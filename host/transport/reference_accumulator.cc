@@ -1,0 +1,146 @@
+// Plain C++ reference of the transport kernels (decode.cl, compress.cl), written as simple loops.
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "host/transport/accumulator.h"
+
+namespace rfrecon::transport {
+
+std::uint32_t gray_bit_mask(const TransportSetup& setup, GrayAxis axis, int bit) {
+  const int n = axis == GrayAxis::kColumns ? setup.projector_size.width : setup.projector_size.height;
+  const int bits = n <= 1 ? 0 : static_cast<int>(std::ceil(std::log2(static_cast<double>(n))));
+  if (bit < 0 || bit >= bits) throw std::invalid_argument("Gray code bit out of range");
+  return 1u << (bits - 1 - bit);
+}
+
+namespace {
+
+const float* pixels(const cv::Mat& frame, const TransportSetup& setup) {
+  if (frame.type() != CV_32FC1 || frame.size() != setup.camera_size || !frame.isContinuous()) {
+    throw std::invalid_argument("transport: frames must be continuous CV_32FC1 of the camera size");
+  }
+  return frame.ptr<float>();
+}
+
+std::uint32_t gray_to_binary(std::uint32_t gray) {
+  std::uint32_t binary = 0;
+  for (; gray != 0; gray >>= 1) binary ^= gray;
+  return binary;
+}
+
+// x = offset + s * floor((coordinate - offset + floor(s / 2)) / s): the lit dot nearest to `coordinate`.
+int nearest_dot(int coordinate, int offset, int spacing) {
+  const int shifted = coordinate - offset + spacing / 2;
+  return offset + spacing * static_cast<int>(std::floor(static_cast<double>(shifted) / spacing));
+}
+
+class ReferenceAccumulator final : public TransportAccumulator {
+ public:
+  explicit ReferenceAccumulator(const TransportSetup& setup) : t_(make_empty_transport(setup)) {}
+
+  void add_gray_pair(GrayAxis axis, int bit, const cv::Mat& pattern, const cv::Mat& inverse) override {
+    const std::uint32_t mask = gray_bit_mask(t_.setup, axis, bit);
+    const float* p = pixels(pattern, t_.setup);
+    const float* inv = pixels(inverse, t_.setup);
+    auto& code = axis == GrayAxis::kColumns ? t_.gray_x : t_.gray_y;
+    for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
+      if (p[c] > inv[c]) code[c] |= mask;
+      if (std::fabs(p[c] - inv[c]) <= t_.setup.thresholds.white) t_.flags[c] |= kFlagLowContrast;
+    }
+  }
+
+  void finish_gray(const cv::Mat& white, const cv::Mat& black) override {
+    const float* w = pixels(white, t_.setup);
+    const float* b = pixels(black, t_.setup);
+    white_ = white.clone();
+    black_ = black.clone();
+    for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
+      t_.gray_x[c] = gray_to_binary(t_.gray_x[c]);
+      t_.gray_y[c] = gray_to_binary(t_.gray_y[c]);
+      if (w[c] - b[c] <= t_.setup.thresholds.black) t_.flags[c] |= kFlagShadow;
+      if (t_.gray_x[c] >= static_cast<std::uint32_t>(t_.setup.projector_size.width) ||
+          t_.gray_y[c] >= static_cast<std::uint32_t>(t_.setup.projector_size.height)) {
+        t_.flags[c] |= kFlagOutOfRange;
+      }
+      if ((t_.flags[c] & (kFlagShadow | kFlagLowContrast | kFlagOutOfRange)) == 0) t_.flags[c] |= kFlagValid;
+    }
+  }
+
+  void add_dot_frame(int offset_x, int offset_y, const cv::Mat& frame) override {
+    const float* f = pixels(frame, t_.setup);
+    const float* b = black_.ptr<float>();
+    const int s = t_.setup.dot_spacing;
+    const cv::Size projector = t_.setup.projector_size;
+    for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
+      const float v = f[c] - b[c];
+      if (!compressible(t_.flags[c]) || !(v > t_.setup.thresholds.noise)) continue;
+      const int qx = nearest_dot(static_cast<int>(t_.gray_x[c]), offset_x, s);
+      const int qy = nearest_dot(static_cast<int>(t_.gray_y[c]), offset_y, s);
+      if (qx < 0 || qx >= projector.width || qy < 0 || qy >= projector.height) continue;
+      t_.direct_energy[c] += v;
+      insert(c, qy * projector.width + qx, v);
+    }
+  }
+
+  CompressedTransport finish() override {
+    const int k_max = t_.k();
+    const int width = t_.setup.projector_size.width;
+    const float* w = white_.ptr<float>();
+    const float* b = black_.ptr<float>();
+    for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
+      const bool valid = (t_.flags[c] & kFlagValid) != 0;
+      const std::size_t row = c * static_cast<std::size_t>(k_max);
+      if (valid && t_.setup.dot_spacing == 0 && w[c] - b[c] > t_.setup.thresholds.noise) {
+        t_.indices[row] = static_cast<std::int32_t>(t_.gray_y[c] * static_cast<std::uint32_t>(width) + t_.gray_x[c]);
+        t_.weights[row] = w[c] - b[c];
+        t_.direct_energy[c] = w[c] - b[c];
+      }
+      float sum = 0.0f;
+      float sum_x = 0.0f;
+      float sum_y = 0.0f;
+      for (int k = 0; k < k_max; ++k) {
+        const int q = t_.indices[row + k];
+        if (q < 0) continue;
+        const int y = q / width;
+        sum += t_.weights[row + k];
+        sum_x += t_.weights[row + k] * static_cast<float>(q - y * width);
+        sum_y += t_.weights[row + k] * static_cast<float>(y);
+      }
+      if (sum > 0.0f) {
+        t_.correspondence[2 * c] = sum_x / sum;
+        t_.correspondence[2 * c + 1] = sum_y / sum;
+      } else if (compressible(t_.flags[c])) {
+        t_.flags[c] |= kFlagNoSignal;
+      }
+    }
+    return std::move(t_);
+  }
+
+ private:
+  // Keeps the row sorted by decreasing weight; a new entry goes after equal weights, the weakest falls out.
+  void insert(std::size_t c, int q, float v) {
+    const std::size_t row = c * static_cast<std::size_t>(t_.k());
+    int slot = t_.k();
+    while (slot > 0 && t_.weights[row + slot - 1] < v) --slot;
+    if (slot == t_.k()) return;
+    for (int k = t_.k() - 1; k > slot; --k) {
+      t_.weights[row + k] = t_.weights[row + k - 1];
+      t_.indices[row + k] = t_.indices[row + k - 1];
+    }
+    t_.weights[row + slot] = v;
+    t_.indices[row + slot] = q;
+  }
+
+  CompressedTransport t_;
+  cv::Mat white_;
+  cv::Mat black_;
+};
+
+}  // namespace
+
+std::unique_ptr<TransportAccumulator> make_reference_accumulator(const TransportSetup& setup) {
+  return std::make_unique<ReferenceAccumulator>(setup);
+}
+
+}  // namespace rfrecon::transport

@@ -1,0 +1,35 @@
+// Products with the compressed T: primal images T L_p (camera side) and dual images T^T L_c (projector side).
+#pragma once
+
+#include <vector>
+
+#include "host/cl/device_context.h"
+#include "host/cl/program_cache.h"
+#include "host/transport/transport_types.h"
+
+namespace rfrecon::transport {
+
+// T^T in CSR form, one row per projector pixel q: entries row_start[q] .. row_start[q + 1] - 1 hold the camera
+// pixels that see q (ascending) and their weights. Built by a stable counting sort of the ELL entries, so the dual
+// product needs no float atomics: each projector pixel is summed by one work-item.
+struct TransposedTransport {
+  cv::Size projector_size;
+  std::vector<std::int32_t> row_start;     // projector pixels + 1
+  std::vector<std::int32_t> camera_pixel;  // one per nonzero
+  std::vector<float> weights;              // one per nonzero
+};
+
+TransposedTransport transpose(const CompressedTransport& transport);
+
+// C++ references: primal[c] = sum_k w[c,k] light_p[idx[c,k]]; dual[q] = sum_c T[c,q] light_c[c], summed in
+// ascending c (the order the kernel's CSR rows have). Throw std::invalid_argument on a light of the wrong size.
+std::vector<float> primal_reference(const CompressedTransport& transport, const std::vector<float>& light_p);
+std::vector<float> dual_reference(const CompressedTransport& transport, const std::vector<float>& light_c);
+
+// kernels/transport/spmv.cl on one device.
+std::vector<float> primal_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
+                                 const CompressedTransport& transport, const std::vector<float>& light_p);
+std::vector<float> dual_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
+                               const TransposedTransport& transposed, const std::vector<float>& light_c);
+
+}  // namespace rfrecon::transport

@@ -1,0 +1,70 @@
+// The compressed light transport T of one capture (fixed-K "ELL" rows, structs of arrays) and its parameters.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "host/cl/kernel_entry.h"
+#include "kernels/transport/flags.h"
+
+namespace rfrecon::transport {
+
+// Per-camera-pixel flag bits (stored as uint8); values shared with the kernels (kernels/transport/flags.h).
+enum PixelFlag : std::uint8_t {
+  kFlagValid = RF_FLAG_VALID,               // lit, every Gray pair contrasted, coordinate inside the projector
+  kFlagShadow = RF_FLAG_SHADOW,             // white - black <= black threshold
+  kFlagLowContrast = RF_FLAG_LOW_CONTRAST,  // some Gray pair had |pattern - inverse| <= white threshold
+  kFlagOutOfRange = RF_FLAG_OUT_OF_RANGE,   // decoded coordinate outside the projector
+  kFlagNoSignal = RF_FLAG_NO_SIGNAL,        // lit and in range, but no transport entry above the noise threshold
+};
+
+// Lit and in range: the pixels the dot-grid compression uses (low contrast included, see kernels/transport/flags.h).
+inline bool compressible(std::uint8_t flags) { return RF_COMPRESSIBLE(flags); }
+
+using cl::KernelEntry;
+
+// Thresholds in linear camera units (1.0 = full scale, black level removed; host/capture/manifest.h).
+// Defaults: black 0.04 ~ 10 DN and white 0.02 ~ 5 DN of an 8-bit camera (OpenCV's GrayCodePattern uses
+// 40 and 5 DN); noise 0.01 ~ 2.5 DN, about 3 sigma of 8-bit quantization plus typical read noise.
+struct Thresholds {
+  float black = 0.04f;  // a pixel is lit when white - black > black
+  float white = 0.02f;  // a Gray bit is trusted when |pattern - inverse| > white
+  float noise = 0.01f;  // transport entries (black subtracted) at or below are dropped
+};
+
+// What the compression needs to know before the first frame.
+struct TransportSetup {
+  cv::Size camera_size;
+  cv::Size projector_size;
+  int dot_spacing = 0;        // s of the s x s dot grid; 0 = Gray code only (one entry per row)
+  int entries_per_pixel = 8;  // K
+  Thresholds thresholds;
+};
+
+// Compressed T: row c = camera pixel y * W + x, column q = projector pixel y * Wp + x. Entry k of row c is at
+// c * K + k, strongest first; index -1 (weight 0) marks an empty slot. Weights are T's values: linear camera
+// response to the projector pixel at full level, black frame subtracted.
+struct CompressedTransport {
+  TransportSetup setup;
+  std::vector<std::int32_t> indices;  // N * K projector pixel indices
+  std::vector<float> weights;         // N * K
+  std::vector<float> correspondence;  // N * 2 sub-pixel projector (x, y), pixel centres at integers; NaN if none
+  std::vector<std::uint32_t> gray_x;  // N decoded (integer) projector column; meaningful where kFlagValid
+  std::vector<std::uint32_t> gray_y;  // N decoded projector row
+  std::vector<std::uint8_t> flags;    // N PixelFlag bits
+  std::vector<float> direct_energy;   // N sum of all entries above noise in the window (kept or not)
+
+  std::size_t camera_pixels() const { return static_cast<std::size_t>(setup.camera_size.area()); }
+  std::size_t projector_pixels() const { return static_cast<std::size_t>(setup.projector_size.area()); }
+  int k() const { return setup.entries_per_pixel; }
+  // "gray+dots" or "gray" (Gray code only).
+  std::string protocol() const { return setup.dot_spacing > 0 ? "gray+dots" : "gray"; }
+};
+
+// An empty transport for `setup`: gray codes 0, flags 0, every slot empty, energy 0, correspondence NaN.
+CompressedTransport make_empty_transport(const TransportSetup& setup);
+
+}  // namespace rfrecon::transport

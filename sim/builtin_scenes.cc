@@ -1,0 +1,161 @@
+// Built-in scenes, defined as scene JSON so they go through the same validation as scene files.
+#include "sim/builtin_scenes.h"
+
+#include <filesystem>
+
+#include "host/common/errors.h"
+
+namespace rfrecon::sim {
+
+using nlohmann::json;
+
+namespace {
+// The rig of the paper's experiment: 640x480 camera and projector with equal 800 px focal lengths, projector 150 mm
+// to the right of the camera, toed in toward the scene centre 600 mm ahead.
+json default_rig(json scene) {
+  scene["camera"] = {{"size", {640, 480}}, {"focal", {800.0, 800.0}}, {"principal_point", {319.5, 239.5}}};
+  scene["projector"] = {{"size", {640, 480}},
+                        {"focal", {800.0, 800.0}},
+                        {"principal_point", {319.5, 239.5}},
+                        {"pose", {{"position", {150.0, 0.0, 0.0}}, {"look_at", {0.0, 0.0, 600.0}}}}};
+  return scene;
+}
+
+json wall(double z) {
+  return {{"name", "wall"},
+          {"shape", "plane"},
+          {"pose", {{"position", {0.0, 0.0, z}}}},
+          {"material", {{"brdf", "lambert"}, {"diffuse", 0.5}}}};
+}
+
+json cube_anisotropic() {
+  json scene = default_rig({{"name", "cube-anisotropic"}});
+  scene["radiometry"] = {{"intensity", 2.0e6}};
+  scene["objects"] = {
+      {{"name", "cube"},
+       {"shape", "box"},
+       {"size", {60.0, 60.0, 60.0}},
+       {"pose", {{"position", {0.0, 0.0, 600.0}}, {"rotation_deg", {25.0, 35.0, 0.0}}}},
+       {"material", {{"brdf", "ward"}, {"diffuse", 0.2}, {"specular", 0.5}, {"alpha_x", 0.08}, {"alpha_y", 0.3}}},
+       {"tangent", {1.0, 2.0, 3.0}}},
+      wall(800.0)};
+  return scene;
+}
+
+json sphere_ward() {
+  json scene = default_rig({{"name", "sphere-ward"}});
+  scene["radiometry"] = {{"intensity", 2.0e6}};
+  scene["objects"] = {
+      {{"name", "sphere"},
+       {"shape", "sphere"},
+       {"size", {50.0}},
+       {"pose", {{"position", {0.0, 0.0, 600.0}}}},
+       {"material", {{"brdf", "ward"}, {"diffuse", 0.3}, {"specular", 0.4}, {"alpha_x", 0.1}, {"alpha_y", 0.25}}},
+       {"tangent", {0.0, 1.0, 0.0}}},
+      wall(800.0)};
+  return scene;
+}
+
+json cylinder_brushed() {
+  json scene = default_rig({{"name", "cylinder-brushed"}});
+  scene["radiometry"] = {{"intensity", 2.0e6}};
+  scene["objects"] = {
+      {{"name", "cylinder"},
+       {"shape", "cylinder"},
+       {"size", {40.0, 120.0}},
+       {"pose", {{"position", {0.0, 0.0, 600.0}}, {"rotation_deg", {70.0, 0.0, 0.0}}}},
+       {"material",
+        {{"brdf", "ashikhmin-shirley"}, {"diffuse", 0.3}, {"specular", 0.4}, {"n_u", 10.0}, {"n_v", 200.0}}},
+       {"tangent", {0.0, 0.0, 1.0}}},
+      wall(800.0)};
+  return scene;
+}
+
+json plane_lambert() {
+  json scene = default_rig({{"name", "plane-lambert"}});
+  scene["objects"] = {{{"name", "plane"},
+                       {"shape", "plane"},
+                       {"size", {400.0, 300.0}},
+                       {"pose", {{"position", {0.0, 0.0, 600.0}}, {"rotation_deg", {0.0, 20.0, 0.0}}}},
+                       {"material", {{"brdf", "lambert"}, {"diffuse", 0.6}}}}};
+  return scene;
+}
+
+// A 10 x 7-square board (9 x 6 inner corners, 30 mm squares) at 10 poses tilted up to 40 degrees about different
+// axes and spread over the field of view, seen by a camera and a projector with mild lens distortion and an
+// off-centre projector principal point, as a real calibration would face. The capture includes the dot grid, so the
+// dual images T^T 1 are built from full transport rows (as in dual photography), not from Gray code alone.
+json checkerboard_poses() {
+  json scene{{"name", "checkerboard-poses"}};
+  scene["camera"] = {{"size", {640, 480}},
+                     {"focal", {820.0, 818.0}},
+                     {"principal_point", {322.0, 236.5}},
+                     {"distortion", {-0.08, 0.05, 0.0005, -0.0003, 0.0}}};
+  scene["projector"] = {{"size", {640, 480}},
+                        {"focal", {880.0, 880.0}},
+                        {"principal_point", {319.5, 290.0}},
+                        {"distortion", {0.03, 0.0, 0.0, 0.0, 0.0}},
+                        {"pose", {{"position", {150.0, 0.0, 0.0}}, {"look_at", {0.0, 30.0, 560.0}}}}};
+  scene["radiometry"] = {{"intensity", 8.0e5}};
+  scene["capture"] = {{"dot_spacing", 8}};
+  scene["objects"] = {{{"name", "board"},
+                       {"shape", "plane"},
+                       {"size", {360.0, 270.0}},
+                       {"pose", {{"position", {0.0, 0.0, 600.0}}}},
+                       {"material", {{"brdf", "lambert"}, {"diffuse", 0.8}}},
+                       {"checkerboard", {{"squares", {10, 7}}, {"square_size", 30.0}}}}};
+  // x, y, z (mm), then rotation about x, y, z (degrees).
+  const double poses[10][6] = {{0, 0, 600, 0, 0, 0},         {-40, -25, 560, 30, -20, 0}, {40, 25, 620, -30, 25, 5},
+                               {-35, 30, 580, -25, -30, -5}, {35, -30, 600, 28, 30, 8},   {0, 0, 560, 0, 40, 0},
+                               {0, 10, 640, 40, 0, -10},     {-20, 15, 560, -38, 10, 12}, {25, -10, 580, 15, -38, -12},
+                               {10, -20, 660, -10, 20, 20}};
+  scene["views"] = json::array();
+  for (const auto& p : poses) {
+    scene["views"].push_back({{"board", {{"position", {p[0], p[1], p[2]}}, {"rotation_deg", {p[3], p[4], p[5]}}}}});
+  }
+  return scene;
+}
+
+struct Builtin {
+  const char* name;
+  const char* description;
+  json (*make)();
+};
+
+const Builtin kBuiltins[] = {
+    {"cube-anisotropic", "60 mm cube at 600 mm, Ward anisotropic brushed metal, three faces visible; wall behind",
+     cube_anisotropic},
+    {"sphere-ward", "50 mm radius sphere at 600 mm, Ward anisotropic; wall behind", sphere_ward},
+    {"cylinder-brushed", "40 mm radius cylinder, brushed along its axis (Ashikhmin-Shirley); wall behind",
+     cylinder_brushed},
+    {"plane-lambert", "Lambertian plane at 600 mm tilted 20 degrees", plane_lambert},
+    {"checkerboard-poses", "9x6-corner checkerboard (30 mm squares) at 10 poses, for calibration", checkerboard_poses},
+};
+}  // namespace
+
+std::vector<BuiltinSceneInfo> builtin_scenes() {
+  std::vector<BuiltinSceneInfo> out;
+  for (const auto& b : kBuiltins) out.push_back({b.name, b.description});
+  return out;
+}
+
+Scene builtin_scene(const std::string& name) {
+  std::string known;
+  for (const auto& b : kBuiltins) {
+    if (name == b.name) return scene_from_json(b.make(), "scene '" + name + "'", {});
+    known += known.empty() ? b.name : std::string(", ") + b.name;
+  }
+  throw InputError("unknown scene '" + name + "' (built-in scenes: " + known + ")");
+}
+
+Scene resolve_scene(const std::string& name_or_file) {
+  for (const auto& b : kBuiltins) {
+    if (name_or_file == b.name) return builtin_scene(name_or_file);
+  }
+  if (std::filesystem::is_regular_file(name_or_file)) return load_scene_file(name_or_file);
+  std::string known;
+  for (const auto& b : kBuiltins) known += known.empty() ? b.name : std::string(", ") + b.name;
+  throw InputError("--scene '" + name_or_file + "' is neither a built-in scene (" + known + ") nor a scene file");
+}
+
+}  // namespace rfrecon::sim

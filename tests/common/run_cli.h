@@ -1,0 +1,29 @@
+// Test helper: runs the built `rfrecon` tool with arguments and returns its exit code and output.
+#pragma once
+
+#include <array>
+#include <cstdio>
+#include <string>
+
+#include <sys/wait.h>
+
+namespace rfrecon::testing {
+
+struct CliResult {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+// `arguments` go through the shell (quote paths with spaces). RFRECON_CLI_PATH is defined by rfrecon_add_test.
+inline CliResult run_cli(const std::string& arguments) {
+  CliResult result;
+  FILE* pipe = ::popen((std::string(RFRECON_CLI_PATH) + " " + arguments + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return result;
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) result.output += buffer.data();
+  const int status = ::pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+}  // namespace rfrecon::testing

@@ -1,0 +1,123 @@
+// The rig file (calib/rig.h): exact round trip, rectification that puts corresponding points on one row, and
+// errors naming the file and key.
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <opencv2/calib3d.hpp>
+
+#include "calib/rig.h"
+#include "host/common/errors.h"
+#include "sim/builtin_scenes.h"
+#include "sim/truth_io.h"
+
+namespace rfrecon {
+namespace {
+
+namespace fs = std::filesystem;
+
+class RigFileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    file_ = fs::temp_directory_path() / ("rfrecon_rig_test_" + std::to_string(::getpid()) + ".yaml");
+  }
+  void TearDown() override { fs::remove(file_); }
+  fs::path file_;
+};
+
+double max_difference(const cv::Mat& a, const cv::Mat& b) { return cv::norm(a, b, cv::NORM_INF); }
+
+TEST_F(RigFileTest, RoundTripIsExact) {
+  // FileStorage writes doubles with 17 significant digits, so every value must come back bit-exact.
+  calib::StereoRig rig = sim::true_rig(sim::builtin_scene("checkerboard-poses"));
+  rig.rms = 0.123;
+  rig.per_view_errors = {0.1, 0.2, 0.15};
+  calib::write_rig(rig, file_);
+  const calib::StereoRig back = calib::read_rig(file_);
+  EXPECT_EQ(back.camera_size, rig.camera_size);
+  EXPECT_EQ(back.projector_size, rig.projector_size);
+  for (const auto& [a, b] : {std::pair{back.camera_matrix, rig.camera_matrix},
+                             {back.dist_coeffs, rig.dist_coeffs},
+                             {back.projector_matrix, rig.projector_matrix},
+                             {back.projector_dist_coeffs, rig.projector_dist_coeffs},
+                             {back.R, rig.R},
+                             {back.T, rig.T},
+                             {back.E, rig.E},
+                             {back.F, rig.F},
+                             {back.R1, rig.R1},
+                             {back.R2, rig.R2},
+                             {back.P1, rig.P1},
+                             {back.P2, rig.P2},
+                             {back.Q, rig.Q}}) {
+    EXPECT_EQ(max_difference(a, b), 0.0);
+  }
+  EXPECT_EQ(back.rms, 0.123);
+  EXPECT_EQ(back.per_view_errors, rig.per_view_errors);
+  EXPECT_EQ(back.board.cols, 9);
+  EXPECT_EQ(back.board.rows, 6);
+  EXPECT_EQ(back.board.square_size, 20.0);
+}
+
+TEST_F(RigFileTest, RectificationAlignsRowsAndEpipolarGeometryHolds) {
+  // A 3D point seen by both devices lands on the same rectified row (to 1e-6 px: exact geometry, no noise), and
+  // its two (distorted-then-undistorted) normalised images satisfy x_p^T E x_c = 0.
+  const sim::Scene scene = sim::builtin_scene("cube-anisotropic");
+  const calib::StereoRig rig = sim::true_rig(scene);
+  const cv::Mat rvec_p = [&] {
+    cv::Mat v;
+    cv::Rodrigues(rig.R, v);
+    return v;
+  }();
+  for (const cv::Point3d X : {cv::Point3d(0, 0, 600), cv::Point3d(-40, 30, 580), cv::Point3d(50, -35, 650)}) {
+    std::vector<cv::Point2d> cam, proj, cam_rect, proj_rect;
+    cv::projectPoints(std::vector<cv::Point3d>{X}, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), rig.camera_matrix,
+                      rig.dist_coeffs, cam);
+    cv::projectPoints(std::vector<cv::Point3d>{X}, rvec_p, rig.T, rig.projector_matrix, rig.projector_dist_coeffs,
+                      proj);
+    cv::undistortPoints(cam, cam_rect, rig.camera_matrix, rig.dist_coeffs, rig.R1, rig.P1);
+    cv::undistortPoints(proj, proj_rect, rig.projector_matrix, rig.projector_dist_coeffs, rig.R2, rig.P2);
+    EXPECT_NEAR(cam_rect[0].y, proj_rect[0].y, 1e-6);
+    const cv::Mat xc = (cv::Mat_<double>(3, 1) << X.x / X.z, X.y / X.z, 1.0);
+    const cv::Mat Xp = rig.R * cv::Mat(cv::Vec3d(X.x, X.y, X.z)) + rig.T;
+    const cv::Mat xp = Xp / Xp.at<double>(2);
+    EXPECT_NEAR(cv::Mat(xp.t() * rig.E * xc).at<double>(0), 0.0, 1e-9);
+  }
+}
+
+TEST_F(RigFileTest, MissingOrMisSizedKeyIsNamed) {
+  calib::write_rig(sim::true_rig(sim::builtin_scene("cube-anisotropic")), file_);
+  std::string text;
+  {
+    std::ifstream in(file_);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const auto expect_error = [&](const std::string& content, const std::string& needle) {
+    std::ofstream(file_) << content;
+    try {
+      calib::read_rig(file_);
+      ADD_FAILURE() << "no error for " << needle;
+    } catch (const InputError& error) {
+      const std::string message = error.what();
+      EXPECT_NE(message.find(needle), std::string::npos) << message;
+      EXPECT_NE(message.find(file_.filename().string()), std::string::npos) << message;
+    }
+  };
+  // The file without the block of `key` (its line and the indented lines that follow).
+  const auto without = [&](const std::string& key) {
+    const auto start = text.find("\n" + key + ":") + 1;
+    auto end = text.find("\n", start);
+    while (end != std::string::npos && end + 1 < text.size() && text[end + 1] == ' ') end = text.find("\n", end + 1);
+    std::string out = text;
+    out.erase(start, end + 1 - start);
+    return out;
+  };
+  expect_error(without("Q"), "'Q'");
+  expect_error(without("projector_matrix"), "'projector_matrix'");
+  std::string bad_t = text;
+  const std::string column = "T: !!opencv-matrix\n   rows: 3\n   cols: 1";
+  bad_t.replace(bad_t.find(column), column.size(), "T: !!opencv-matrix\n   rows: 1\n   cols: 3");
+  expect_error(bad_t, "'T' must be a 3x1");
+  EXPECT_THROW(calib::read_rig(file_.string() + ".missing"), InputError);
+}
+
+}  // namespace
+}  // namespace rfrecon

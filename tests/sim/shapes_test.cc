@@ -1,0 +1,127 @@
+// Geometry of the analytic shapes and meshes as rendered: surface points lie on the shape, normals are the shape's,
+// a triangle mesh of a box renders like the box, and one-bounce interreflection adds light only where surfaces
+// see each other.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "sim/render.h"
+#include "tests/sim/test_scenes.h"
+
+namespace rfrecon::sim {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::make_scene;
+using testing::small_rig;
+
+const nlohmann::json kLambert{{"brdf", "lambert"}, {"diffuse", 0.6}};
+
+nlohmann::json object(const std::string& shape, std::vector<double> size, std::vector<double> position,
+                      std::vector<double> rotation_deg) {
+  return {{"name", shape},
+          {"shape", shape},
+          {"size", size},
+          {"pose", {{"position", position}, {"rotation_deg", rotation_deg}}},
+          {"material", kLambert}};
+}
+
+TEST(ShapesTest, SurfacePointsAndNormalsBelongToTheShape) {
+  // Truth points are stored as float32 (~3e-5 mm at 600 mm): 1e-3 mm and 1e-4 on normals bound the storage error.
+  const Scene sphere = make_scene(small_rig({object("sphere", {50.0}, {10.0, -5.0, 600.0}, {0, 0, 0})}));
+  const auto s = render_transport(sphere, {1}).truth;
+  const Eigen::Vector3d centre(10.0, -5.0, 600.0);
+  int count = 0;
+  for (int i = 0; i < s.points_mm.rows * s.points_mm.cols; ++i) {
+    const cv::Vec3f p = s.points_mm.at<cv::Vec3f>(i), n = s.normals.at<cv::Vec3f>(i);
+    if (!std::isfinite(p[0])) continue;
+    const Eigen::Vector3d X(p[0], p[1], p[2]);
+    EXPECT_NEAR((X - centre).norm(), 50.0, 1e-3);
+    EXPECT_NEAR(((X - centre) / 50.0 - Eigen::Vector3d(n[0], n[1], n[2])).norm(), 0.0, 1e-4);
+    ++count;
+  }
+  EXPECT_GT(count, 150);  // ~8 px radius at 80x60, f = 100
+
+  // Cylinder along the object z axis, tilted: points on the side are at radius 40 from the axis, normals radial;
+  // points on a cap are within the radius and have the axis as normal.
+  const Scene cylinder = make_scene(small_rig({object("cylinder", {40.0, 100.0}, {0.0, 0.0, 600.0}, {60, 20, 0})}));
+  const auto c = render_transport(cylinder, {1}).truth;
+  const Eigen::Isometry3d object_from_world = cylinder.objects[0].world_from_object.inverse();
+  count = 0;
+  for (int i = 0; i < c.points_mm.rows * c.points_mm.cols; ++i) {
+    const cv::Vec3f p = c.points_mm.at<cv::Vec3f>(i), n = c.normals.at<cv::Vec3f>(i);
+    if (!std::isfinite(p[0])) continue;
+    const Eigen::Vector3d X = object_from_world * Eigen::Vector3d(p[0], p[1], p[2]);
+    const Eigen::Vector3d normal = object_from_world.linear() * Eigen::Vector3d(n[0], n[1], n[2]);
+    const bool on_cap = std::abs(std::abs(X.z()) - 50.0) < 1e-3;
+    if (on_cap) {
+      EXPECT_LE(X.head<2>().norm(), 40.0 + 1e-3);
+      EXPECT_NEAR(std::abs(normal.z()), 1.0, 1e-4);
+    } else {
+      EXPECT_NEAR(X.head<2>().norm(), 40.0, 1e-3);
+      EXPECT_NEAR((Eigen::Vector3d(X.x(), X.y(), 0).normalized() - normal).norm(), 0.0, 1e-4);
+    }
+    ++count;
+  }
+  EXPECT_GT(count, 150);  // ~8 px radius at 80x60, f = 100
+}
+
+TEST(ShapesTest, TriangleMeshOfABoxRendersLikeTheBox) {
+  // The same 60 mm box as 12 triangles (OBJ, loaded with assimp) and as the analytic box: identical depth wherever
+  // both see it (1e-4 mm: two intersection formulas in double, stored as float32) and the same silhouette.
+  const fs::path file = fs::temp_directory_path() / ("rfrecon_box_" + std::to_string(::getpid()) + ".obj");
+  {
+    std::ofstream obj(file);
+    for (int i = 0; i < 8; ++i)
+      obj << "v " << (i & 1 ? 30 : -30) << " " << (i & 2 ? 30 : -30) << " " << (i & 4 ? 30 : -30) << "\n";
+    for (const char* face : {"1 3 4 2", "5 6 8 7", "1 2 6 5", "3 7 8 4", "1 5 7 3", "2 4 8 6"})
+      obj << "f " << face << "\n";
+  }
+  const std::vector<double> position{0.0, 0.0, 600.0}, rotation{25.0, 35.0, 0.0};
+  auto mesh = object("mesh", {}, position, rotation);
+  mesh.erase("size");
+  mesh["file"] = file.string();
+  const auto from_mesh = render_transport(make_scene(small_rig({mesh})), {1}).truth;
+  const auto from_box =
+      render_transport(make_scene(small_rig({object("box", {60, 60, 60}, position, rotation)})), {1}).truth;
+  fs::remove(file);
+  int both = 0, differ = 0;
+  for (int i = 0; i < from_box.depth_mm.rows * from_box.depth_mm.cols; ++i) {
+    const float a = from_mesh.depth_mm.at<float>(i), b = from_box.depth_mm.at<float>(i);
+    if (std::isfinite(a) != std::isfinite(b)) ++differ;
+    if (std::isfinite(a) && std::isfinite(b)) {
+      EXPECT_NEAR(a, b, 1e-4);
+      ++both;
+    }
+  }
+  EXPECT_GT(both, 100);
+  EXPECT_EQ(differ, 0);
+}
+
+TEST(ShapesTest, InterreflectionOnlyWhereSurfacesSeeEachOther) {
+  // A lone plane cannot light itself: T is identical with and without interreflection. In a concave corner of two
+  // planes, light can only be added (every row sum >= its direct value) and some pixels gain.
+  const auto plane = object("plane", {300.0, 300.0}, {0.0, 0.0, 600.0}, {0, 20, 0});
+  auto lone = small_rig({plane});
+  const auto direct = render_transport(make_scene(lone)).T;
+  lone["render"] = {{"interreflection_samples", 4}};
+  const auto with_bounce = render_transport(make_scene(lone)).T;
+  EXPECT_EQ(0.0, (Eigen::SparseMatrix<float>(direct) - Eigen::SparseMatrix<float>(with_bounce)).norm());
+
+  auto left = object("plane", {300.0, 300.0}, {-40.0, 0.0, 620.0}, {0, 45, 0});
+  left["name"] = "left";
+  auto right = object("plane", {300.0, 300.0}, {40.0, 0.0, 620.0}, {0, -45, 0});
+  right["name"] = "right";
+  auto corner = small_rig({left, right});
+  const auto corner_direct = render_transport(make_scene(corner)).T;
+  corner["render"] = {{"interreflection_samples", 4}};
+  const auto corner_bounce = render_transport(make_scene(corner)).T;
+  const Eigen::VectorXf ones = Eigen::VectorXf::Ones(corner_direct.cols());
+  const Eigen::VectorXf a = corner_direct * ones, b = corner_bounce * ones;
+  EXPECT_TRUE(((b - a).array() >= -1e-6f * a.array()).all());
+  EXPECT_GT((b - a).maxCoeff(), 0.01f * a.maxCoeff());
+}
+
+}  // namespace
+}  // namespace rfrecon::sim

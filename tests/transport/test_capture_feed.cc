@@ -1,0 +1,50 @@
+// In-memory feeding of capture frames for the transport tests.
+#include "tests/transport/test_capture_feed.h"
+
+namespace rfrecon::transport::testing {
+
+using capture::PatternKind;
+
+std::vector<cv::Mat> linearize(const std::vector<cv::Mat>& frames) {
+  std::vector<cv::Mat> linear;
+  for (const auto& frame : frames) {
+    cv::Mat value;
+    frame.convertTo(value, CV_32F, 1.0 / 255.0);
+    linear.push_back(value);
+  }
+  return linear;
+}
+
+CompressedTransport feed_all(TransportAccumulator& accumulator, const std::vector<capture::Pattern>& sequence,
+                             const std::vector<cv::Mat>& linear_frames) {
+  cv::Mat white;
+  cv::Mat black;
+  for (std::size_t i = 0; i < sequence.size(); ++i) {
+    const auto& pattern = sequence[i];
+    if (pattern.kind == PatternKind::kWhite) white = linear_frames[i];
+    if (pattern.kind == PatternKind::kBlack) black = linear_frames[i];
+    if ((pattern.kind == PatternKind::kGrayColumn || pattern.kind == PatternKind::kGrayRow) && !pattern.inverse) {
+      // make_protocol puts each inverse right after its pattern.
+      const GrayAxis axis = pattern.kind == PatternKind::kGrayColumn ? GrayAxis::kColumns : GrayAxis::kRows;
+      accumulator.add_gray_pair(axis, pattern.bit, linear_frames[i], linear_frames[i + 1]);
+    }
+  }
+  accumulator.finish_gray(white, black);
+  for (std::size_t i = 0; i < sequence.size(); ++i) {
+    if (sequence[i].kind == PatternKind::kDot) {
+      accumulator.add_dot_frame(sequence[i].dot_offset_x, sequence[i].dot_offset_y, linear_frames[i]);
+    }
+  }
+  return accumulator.finish();
+}
+
+TransportSetup setup_for(const std::vector<cv::Mat>& frames, cv::Size projector_size, int dot_spacing, int k) {
+  TransportSetup setup;
+  setup.camera_size = frames.front().size();
+  setup.projector_size = projector_size;
+  setup.dot_spacing = dot_spacing;
+  setup.entries_per_pixel = k;
+  return setup;
+}
+
+}  // namespace rfrecon::transport::testing

@@ -1,0 +1,187 @@
+// `rfrecon patterns`, `transport` and `dual` run in process: a good capture gives T.h5 and images; bad captures fail
+// with an InputError naming the file and leave no T.h5 behind.
+#include <cmath>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "host/capture/protocol.h"
+#include "host/cli/commands.h"
+#include "host/common/errors.h"
+#include "host/transport/transport_file.h"
+#include "tests/transport/synthetic_capture.h"
+
+namespace rfrecon::transport {
+namespace {
+
+namespace fs = std::filesystem;
+
+void run_cli(std::vector<std::string> args) {
+  CLI::App app;
+  cli::add_patterns_command(app);
+  cli::add_transport_command(app);
+  cli::add_dual_command(app);
+  std::reverse(args.begin(), args.end());  // CLI11 takes the arguments in reverse order
+  app.parse(args);
+}
+
+class TransportCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    testing::SceneOptions options;
+    options.camera_size = {24, 20};
+    options.projector_size = {16, 12};
+    scene_ = testing::make_plane_scene(options);
+    sequence_ = capture::make_protocol({options.projector_size, 3});
+    frames_ = testing::render_frames(scene_, sequence_, 3, 1.0, 9);
+    manifest_ = testing::write_capture(capture_, scene_, sequence_, 3, frames_);
+  }
+
+  // Runs `transport` and returns the InputError message; the output must not exist afterwards.
+  std::string transport_error() {
+    std::string message = "(no InputError)";
+    try {
+      run_cli({"transport", capture_.string(), "-o", output_.string()});
+    } catch (const InputError& error) {
+      message = error.what();
+    }
+    EXPECT_FALSE(fs::exists(output_)) << "a failed run must leave no T.h5";
+    return message;
+  }
+
+  fs::path frame_path(std::size_t i) const { return capture_ / manifest_.frames[i].file; }
+
+  testing::TempDir dir_{"cli"};
+  fs::path capture_ = dir_.path() / "capture";
+  fs::path output_ = dir_.path() / "T.h5";
+  testing::PlaneScene scene_;
+  std::vector<capture::Pattern> sequence_;
+  std::vector<cv::Mat> frames_;
+  capture::CaptureManifest manifest_;
+};
+
+TEST_F(TransportCliTest, GoodCaptureGivesTransportAndDualAndPrimalImages) {
+  run_cli({"transport", capture_.string(), "-o", output_.string()});
+  const auto transport = read_transport(output_);
+  EXPECT_EQ(transport.setup.camera_size, scene_.camera_size);
+  EXPECT_EQ(transport.setup.dot_spacing, 3);
+  const fs::path dual = dir_.path() / "dual.png";
+  run_cli({"dual", output_.string(), "-o", dual.string()});
+  EXPECT_EQ(cv::imread(dual.string(), cv::IMREAD_UNCHANGED).size(), scene_.projector_size);
+  const fs::path primal = dir_.path() / "primal.tiff";
+  run_cli({"dual", output_.string(), "-o", primal.string(), "--primal"});
+  const cv::Mat primal_image = cv::imread(primal.string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(primal_image.size(), scene_.camera_size);
+  // T 1 is what the camera sees under full white minus black: albedo 0.8 on lit pixels. Per pixel it carries the
+  // black frame's noise once per entry (K x 1 DN), so compare the mean over the pixels with entries: within 0.02 for
+  // the ~2% of energy under the noise threshold and the remaining noise.
+  double sum = 0.0;
+  int count = 0;
+  for (std::size_t c = 0; c < transport.camera_pixels(); ++c) {
+    if (std::isnan(transport.correspondence[2 * c])) continue;
+    sum += primal_image.at<float>(static_cast<int>(c));
+    ++count;
+  }
+  ASSERT_GT(count, primal_image.rows * primal_image.cols / 2);
+  EXPECT_NEAR(sum / count, 0.8, 0.02);
+}
+
+TEST_F(TransportCliTest, OpencvLayoutWithoutManifestDecodesLikeTheManifest) {
+  const fs::path opencv = dir_.path() / "opencv";
+  fs::create_directories(opencv);
+  const auto graycode = capture::opencv_graycode_protocol(scene_.projector_size);
+  const auto frames = testing::render_frames(scene_, graycode, 0, 1.0, 9);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    cv::imwrite((opencv / ("pattern_" + std::to_string(10 + i) + ".png")).string(), frames[i]);
+  }
+  run_cli(
+      {"transport", opencv.string(), "-o", output_.string(), "--layout", "opencv-graycode", "--projector", "16x12"});
+  const auto transport = read_transport(output_);
+  EXPECT_EQ(transport.setup.dot_spacing, 0);
+  // Without noise differences mattering for the integer decode, the coordinates agree with the manifest capture's
+  // on pixels valid in both (same scene, same Gray frames).
+  run_cli({"transport", capture_.string(), "-o", (dir_.path() / "T2.h5").string()});
+  const auto reference = read_transport(dir_.path() / "T2.h5");
+  std::size_t both = 0, same = 0;
+  for (std::size_t c = 0; c < transport.camera_pixels(); ++c) {
+    if ((transport.flags[c] & reference.flags[c] & kFlagValid) == 0) continue;
+    ++both;
+    same += transport.gray_x[c] == reference.gray_x[c] && transport.gray_y[c] == reference.gray_y[c] ? 1 : 0;
+  }
+  EXPECT_GT(both, transport.camera_pixels() / 2);
+  EXPECT_EQ(same, both);
+}
+
+TEST_F(TransportCliTest, MissingFrameIsNamed) {
+  fs::remove(frame_path(5));
+  EXPECT_NE(transport_error().find(manifest_.frames[5].file), std::string::npos);
+}
+
+TEST_F(TransportCliTest, FrameSizeMismatchIsNamed) {
+  cv::imwrite(frame_path(7).string(), cv::Mat(10, 12, CV_8U, cv::Scalar(100)));
+  EXPECT_NE(transport_error().find(manifest_.frames[7].file), std::string::npos);
+}
+
+TEST_F(TransportCliTest, BitDepthMismatchIsNamed) {
+  cv::Mat sixteen;
+  frames_[4].convertTo(sixteen, CV_16U, 256.0);
+  cv::imwrite(frame_path(4).string(), sixteen);
+  const std::string message = transport_error();
+  EXPECT_NE(message.find(manifest_.frames[4].file), std::string::npos) << message;
+  EXPECT_NE(message.find("bit"), std::string::npos) << message;
+}
+
+TEST_F(TransportCliTest, UnreadableImageIsNamed) {
+  std::ofstream(frame_path(3), std::ios::trunc) << "garbage";
+  EXPECT_NE(transport_error().find(manifest_.frames[3].file), std::string::npos);
+}
+
+TEST_F(TransportCliTest, ManifestInconsistentWithProjectorSizeIsNamed) {
+  auto manifest = manifest_;
+  manifest.projector_size = {64, 12};  // 6 column bits, the capture has 4
+  capture::write_manifest(manifest, capture_);
+  EXPECT_NE(transport_error().find("manifest.json"), std::string::npos);
+}
+
+TEST_F(TransportCliTest, AllDarkCaptureIsNamed) {
+  for (std::size_t i = 0; i < manifest_.frames.size(); ++i) {
+    cv::imwrite(frame_path(i).string(), cv::Mat(scene_.camera_size, CV_8U, cv::Scalar(3)));
+  }
+  const std::string message = transport_error();
+  EXPECT_NE(message.find("all-dark"), std::string::npos) << message;
+  EXPECT_NE(message.find(manifest_.frames[0].file), std::string::npos) << message;  // the white frame
+}
+
+TEST_F(TransportCliTest, PatternsDecodeBackToTheirProjectorCoordinates) {
+  const fs::path out = dir_.path() / "patterns";
+  run_cli({"patterns", "--projector", "20x9", "--out", out.string(), "--dot-spacing", "4"});
+  const auto manifest = capture::read_manifest(out);
+  EXPECT_EQ(manifest.frames.size(), 2u + 2u * (5u + 4u) + 16u);
+  // Decoding the written Gray images as a camera that sees the projector pixel for pixel gives every coordinate.
+  std::vector<std::uint32_t> gray_x(std::size_t{20} * 9, 0), gray_y(std::size_t{20} * 9, 0);
+  for (const auto& frame : manifest.frames) {
+    if (frame.pattern.inverse || (frame.pattern.kind != capture::PatternKind::kGrayColumn &&
+                                  frame.pattern.kind != capture::PatternKind::kGrayRow)) {
+      continue;
+    }
+    const bool columns = frame.pattern.kind == capture::PatternKind::kGrayColumn;
+    const cv::Mat image = cv::imread((out / frame.file).string(), cv::IMREAD_GRAYSCALE);
+    const int bits = columns ? 5 : 4;
+    for (int i = 0; i < 20 * 9; ++i) {
+      if (image.ptr<unsigned char>()[i] > 127) (columns ? gray_x : gray_y)[i] |= 1u << (bits - 1 - frame.pattern.bit);
+    }
+  }
+  for (int y = 0; y < 9; ++y) {
+    for (int x = 0; x < 20; ++x) {
+      std::uint32_t bx = 0, by = 0;
+      for (std::uint32_t g = gray_x[y * 20 + x]; g != 0; g >>= 1) bx ^= g;
+      for (std::uint32_t g = gray_y[y * 20 + x]; g != 0; g >>= 1) by ^= g;
+      EXPECT_EQ(bx, static_cast<std::uint32_t>(x));
+      EXPECT_EQ(by, static_cast<std::uint32_t>(y));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rfrecon::transport

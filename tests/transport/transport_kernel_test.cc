@@ -1,0 +1,155 @@
+// The transport kernels (decode, compress, primal and dual SpMV) against their C++ references, through both entries,
+// and the streaming pipeline against the all-at-once reference. Tiny sizes: CI reruns these under oclgrind.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "host/capture/protocol.h"
+#include "host/cl/device_selection.h"
+#include "host/transport/pipeline.h"
+#include "host/transport/spmv.h"
+#include "tests/transport/synthetic_capture.h"
+#include "tests/transport/test_capture_feed.h"
+
+namespace rfrecon::transport {
+namespace {
+
+using testing::PlaneScene;
+
+constexpr KernelEntry kEntries[] = {KernelEntry::kNdRange, KernelEntry::kSingleWorkItem};
+
+// Everything but the correspondence is integer logic or a single float subtraction/addition in the same order on
+// both sides, so it must agree bit for bit. The centroid divides, and OpenCL's single-precision division may be
+// off by 2.5 ulp: 1e-5 projector pixels covers that at these coordinates (< 64).
+void expect_same_transport(const CompressedTransport& got, const CompressedTransport& expected) {
+  EXPECT_EQ(got.indices, expected.indices);
+  EXPECT_EQ(got.weights, expected.weights);
+  EXPECT_EQ(got.gray_x, expected.gray_x);
+  EXPECT_EQ(got.gray_y, expected.gray_y);
+  EXPECT_EQ(got.flags, expected.flags);
+  EXPECT_EQ(got.direct_energy, expected.direct_energy);
+  ASSERT_EQ(got.correspondence.size(), expected.correspondence.size());
+  for (std::size_t i = 0; i < got.correspondence.size(); ++i) {
+    if (std::isnan(expected.correspondence[i])) {
+      EXPECT_TRUE(std::isnan(got.correspondence[i])) << i;
+    } else {
+      EXPECT_NEAR(got.correspondence[i], expected.correspondence[i], 1e-5) << i;
+    }
+  }
+}
+
+struct TinyCapture {
+  PlaneScene scene;
+  std::vector<capture::Pattern> sequence;
+  std::vector<cv::Mat> frames;  // 8-bit
+};
+
+TinyCapture tiny_capture(int dot_spacing) {
+  testing::SceneOptions options;
+  options.camera_size = {24, 20};
+  options.projector_size = {16, 12};
+  TinyCapture capture{testing::make_plane_scene(options), {}, {}};
+  capture.sequence = capture::make_protocol({options.projector_size, dot_spacing});
+  capture.frames = testing::render_frames(capture.scene, capture.sequence, dot_spacing, 1.0, 7);
+  return capture;
+}
+
+class TransportKernelTest : public ::testing::Test {
+ protected:
+  cl::ProgramCache programs_;
+  std::vector<cl::DeviceContext> devices_ = cl::open_devices("");
+};
+
+TEST_F(TransportKernelTest, DecodeAndCompressMatchReferenceWithDotGrid) {
+  // K = 4 < s^2 = 9 candidates, so the insertion network also drops entries.
+  const auto capture = tiny_capture(3);
+  const auto linear = testing::linearize(capture.frames);
+  const auto setup = testing::setup_for(linear, capture.scene.projector_size, 3, 4);
+  auto reference = make_reference_accumulator(setup);
+  const auto expected = testing::feed_all(*reference, capture.sequence, linear);
+  std::size_t valid = 0;
+  for (const auto flags : expected.flags) valid += (flags & kFlagValid) != 0 ? 1 : 0;
+  ASSERT_GT(valid, expected.camera_pixels() / 2) << "the test scene must light most pixels";
+  ASSERT_FALSE(devices_.empty());
+  for (auto& device : devices_) {
+    for (const auto entry : kEntries) {
+      SCOPED_TRACE(cl::describe(device.info()) + (entry == KernelEntry::kNdRange ? " ndrange" : " single"));
+      auto accumulator = make_device_accumulator(setup, device, programs_, entry);
+      expect_same_transport(testing::feed_all(*accumulator, capture.sequence, linear), expected);
+    }
+  }
+}
+
+TEST_F(TransportKernelTest, GrayCodeOnlyGivesOneEntryPerRowLikeReference) {
+  const auto capture = tiny_capture(0);
+  const auto linear = testing::linearize(capture.frames);
+  const auto setup = testing::setup_for(linear, capture.scene.projector_size, 0, 2);
+  auto reference = make_reference_accumulator(setup);
+  const auto expected = testing::feed_all(*reference, capture.sequence, linear);
+  for (std::size_t c = 0; c < expected.camera_pixels(); ++c) {
+    EXPECT_EQ(expected.indices[2 * c + 1], -1) << "Gray code only fills one slot per row";
+  }
+  for (auto& device : devices_) {
+    for (const auto entry : kEntries) {
+      auto accumulator = make_device_accumulator(setup, device, programs_, entry);
+      expect_same_transport(testing::feed_all(*accumulator, capture.sequence, linear), expected);
+    }
+  }
+}
+
+TEST_F(TransportKernelTest, StreamingFromDiskEqualsAllFramesInMemory) {
+  const auto capture = tiny_capture(3);
+  testing::TempDir dir("streaming");
+  const auto manifest = testing::write_capture(dir.path(), capture.scene, capture.sequence, 3, capture.frames);
+  const auto linear = testing::linearize(capture.frames);
+  const auto setup = testing::setup_for(linear, capture.scene.projector_size, 3, 4);
+  auto reference = make_reference_accumulator(setup);
+  const auto expected = testing::feed_all(*reference, capture.sequence, linear);
+  auto& device = devices_.front();
+  const auto run = compute_transport(dir.path(), capture::read_manifest(dir.path()), setup, [&](const auto& s) {
+    return make_device_accumulator(s, device, programs_, KernelEntry::kNdRange);
+  });
+  expect_same_transport(run.transport, expected);
+}
+
+TEST_F(TransportKernelTest, PrimalAndDualMatchReferenceAndDenseProduct) {
+  const auto capture = tiny_capture(3);
+  const auto linear = testing::linearize(capture.frames);
+  auto reference = make_reference_accumulator(testing::setup_for(linear, capture.scene.projector_size, 3, 4));
+  const auto transport = testing::feed_all(*reference, capture.sequence, linear);
+  std::mt19937 random(3);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  std::vector<float> light_p(transport.projector_pixels());
+  std::vector<float> light_c(transport.camera_pixels());
+  for (auto& value : light_p) value = uniform(random);
+  for (auto& value : light_c) value = uniform(random);
+
+  // Dense double-precision products: the references must equal them to float rounding (1e-5 relative of a sum of
+  // at most K or a few dozen positive terms of similar size).
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(transport.camera_pixels(), transport.projector_pixels());
+  for (std::size_t slot = 0; slot < transport.indices.size(); ++slot) {
+    if (transport.indices[slot] >= 0) dense(slot / transport.k(), transport.indices[slot]) += transport.weights[slot];
+  }
+  const Eigen::VectorXd primal_dense =
+      dense * Eigen::Map<const Eigen::VectorXf>(light_p.data(), light_p.size()).cast<double>();
+  const Eigen::VectorXd dual_dense =
+      dense.transpose() * Eigen::Map<const Eigen::VectorXf>(light_c.data(), light_c.size()).cast<double>();
+  const auto primal = primal_reference(transport, light_p);
+  const auto dual = dual_reference(transport, light_c);
+  for (std::size_t c = 0; c < primal.size(); ++c) EXPECT_NEAR(primal[c], primal_dense[c], 1e-5 * primal_dense[c]);
+  for (std::size_t q = 0; q < dual.size(); ++q) EXPECT_NEAR(dual[q], dual_dense[q], 1e-5 * dual_dense[q]);
+  EXPECT_GT(dual_dense.maxCoeff(), 0.1) << "the dual image must not be empty";
+
+  // The kernels sum in the references' order with contraction off: bit for bit.
+  const auto transposed = transpose(transport);
+  for (auto& device : devices_) {
+    for (const auto entry : kEntries) {
+      EXPECT_EQ(primal_opencl(device, programs_, entry, transport, light_p), primal);
+      EXPECT_EQ(dual_opencl(device, programs_, entry, transposed, light_c), dual);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rfrecon::transport
