@@ -11,7 +11,7 @@
 
 namespace {
 
-constexpr std::size_t kElements = 1 << 24;  // 64 MiB per array: larger than any cache
+constexpr std::size_t kElements = std::size_t{1} << 26;  // 256 MiB per array: beyond the last-level cache
 
 // Bytes an axpy moves: read x, read y, write y.
 constexpr double kBytesPerElement = 3 * sizeof(float);

@@ -5,8 +5,9 @@
 
 namespace rfrecon::bench {
 
-// Host memory bandwidth in bytes/s, measured once per process: best of several streaming passes
-// (read two arrays, write one; 64 MiB each, larger than any cache) in plain C++.
+// Host memory bandwidth in bytes/s, measured once per process: best of five streaming passes a += 0.5 b (read two
+// arrays, write one in place, so no write-allocate traffic; 256 MiB each, beyond the last-level cache) in plain C++
+// on every hardware thread, as PoCL uses them all.
 double host_stream_bytes_per_second();
 
 // Sets "GB/s" and "roofline_fraction" (achieved bandwidth / host_stream_bytes_per_second()) for `bytes_per_iteration`

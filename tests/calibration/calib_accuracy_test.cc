@@ -62,33 +62,32 @@ TEST_F(CalibrationAccuracyTest, StereoPose) {
   EXPECT_LT(estimated_.rms, 0.2) << "stereo reprojection RMS, px";
 }
 
-// The true board corners of every pose, projected by the true camera and projector, then rectified with the
-// estimated rig, must land on the same rectified row.
-TEST_F(CalibrationAccuracyTest, RectifiedCorrespondencesShareRows) {
-  std::ifstream in(kPoses / "truth" / "board_poses.json");
-  ASSERT_TRUE(in) << "missing truth/board_poses.json";
-  const auto poses = nlohmann::json::parse(in);
+// The true board corners of every pose in `poses_dir`, projected by the true camera and projector, then rectified
+// with the estimated rig: {RMS, worst} difference of their rectified rows, in px.
+std::pair<double, double> rectified_row_error(const fs::path& poses_dir, const StereoRig& truth,
+                                              const StereoRig& estimated) {
+  std::ifstream in(poses_dir / "truth" / "board_poses.json");
+  if (!in) throw std::runtime_error("missing " + (poses_dir / "truth" / "board_poses.json").string());
   std::vector<cv::Point3d> corners_cam_mm;
-  for (const auto& pose : poses) {
+  for (const auto& pose : nlohmann::json::parse(in)) {
     for (const auto& corner : pose.at("inner_corners_cam_mm")) {
       corners_cam_mm.emplace_back(corner[0].get<double>(), corner[1].get<double>(), corner[2].get<double>());
     }
   }
-  ASSERT_FALSE(corners_cam_mm.empty());
   std::vector<cv::Point2d> camera_px;
   std::vector<cv::Point2d> projector_px;
   cv::Mat rvec_proj;
-  cv::Rodrigues(truth_.R, rvec_proj);
-  cv::projectPoints(corners_cam_mm, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), truth_.camera_matrix, truth_.dist_coeffs,
+  cv::Rodrigues(truth.R, rvec_proj);
+  cv::projectPoints(corners_cam_mm, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), truth.camera_matrix, truth.dist_coeffs,
                     camera_px);
-  cv::projectPoints(corners_cam_mm, rvec_proj, truth_.T, truth_.projector_matrix, truth_.projector_dist_coeffs,
+  cv::projectPoints(corners_cam_mm, rvec_proj, truth.T, truth.projector_matrix, truth.projector_dist_coeffs,
                     projector_px);
   std::vector<cv::Point2d> camera_rect;
   std::vector<cv::Point2d> projector_rect;
-  cv::undistortPoints(camera_px, camera_rect, estimated_.camera_matrix, estimated_.dist_coeffs, estimated_.R1,
-                      estimated_.P1);
-  cv::undistortPoints(projector_px, projector_rect, estimated_.projector_matrix, estimated_.projector_dist_coeffs,
-                      estimated_.R2, estimated_.P2);
+  cv::undistortPoints(camera_px, camera_rect, estimated.camera_matrix, estimated.dist_coeffs, estimated.R1,
+                      estimated.P1);
+  cv::undistortPoints(projector_px, projector_rect, estimated.projector_matrix, estimated.projector_dist_coeffs,
+                      estimated.R2, estimated.P2);
   double worst = 0.0;
   double sum_sq = 0.0;
   for (std::size_t i = 0; i < camera_rect.size(); ++i) {
@@ -96,10 +95,32 @@ TEST_F(CalibrationAccuracyTest, RectifiedCorrespondencesShareRows) {
     worst = std::max(worst, std::abs(dy));
     sum_sq += dy * dy;
   }
-  const double rms = std::sqrt(sum_sq / static_cast<double>(camera_rect.size()));
+  return {std::sqrt(sum_sq / static_cast<double>(std::max<std::size_t>(camera_rect.size(), 1))), worst};
+}
+
+TEST_F(CalibrationAccuracyTest, RectifiedCorrespondencesShareRows) {
+  const auto [rms, worst] = rectified_row_error(kPoses, truth_, estimated_);
   RecordProperty("rectified_row_rms_px", std::to_string(rms));
   EXPECT_LT(rms, 0.05);
   EXPECT_LT(worst, 0.2);
+}
+
+// The projector 2.1 times finer than the camera on the board (camera 320x240, projector 640x480): the dual image
+// has gaps between reached projector pixels. The projector's calibration must still meet the targets
+// (focal 0.5%, principal point 2 px), and the baseline 0.5%; measured 0.03%, 0.9 px and 0.26%. The quarter-resolution
+// camera itself is only good to about 0.6% in focal length, which leaves 0.22 px RMS between rectified rows and
+// 0.11 degree of rotation error, so those are asserted on the full-resolution rig only.
+TEST(CalibrationResolutionRatioTest, ProjectorFinerThanCamera) {
+  const fs::path poses = fs::path(RFRECON_FIXTURES_DIR) / "checkerboard-poses-small-camera";
+  const auto truth = read_rig(poses / "truth" / "rig.yaml");
+  const auto estimated = read_rig(poses / "estimated" / "rig.yaml");
+  EXPECT_LT(relative_error(estimated.projector_matrix.at<double>(0, 0), truth.projector_matrix.at<double>(0, 0)),
+            0.005);
+  EXPECT_LT(relative_error(estimated.projector_matrix.at<double>(1, 1), truth.projector_matrix.at<double>(1, 1)),
+            0.005);
+  EXPECT_NEAR(estimated.projector_matrix.at<double>(0, 2), truth.projector_matrix.at<double>(0, 2), 2.0);
+  EXPECT_NEAR(estimated.projector_matrix.at<double>(1, 2), truth.projector_matrix.at<double>(1, 2), 2.0);
+  EXPECT_LT(relative_error(cv::norm(estimated.T), cv::norm(truth.T)), 0.005) << "baseline";
 }
 
 TEST(CameraOnlyCalibrationTest, FocalLengthFromWhiteFrames) {
