@@ -59,4 +59,26 @@ const bool kContextAdded = [] {
 }();
 }  // namespace
 
+void RecordingReporter::ReportRuns(const std::vector<Run>& runs) {
+  for (const auto& run : runs) {
+    if (run.run_type == Run::RT_Aggregate && run.aggregate_name != "median") continue;
+    const std::string& name = run.run_name.function_name;
+    seconds_[name] = run.GetAdjustedRealTime() / benchmark::GetTimeUnitMultiplier(run.time_unit);
+    counters_[name] = run.counters;
+  }
+  ConsoleReporter::ReportRuns(runs);
+}
+
+double RecordingReporter::seconds(const std::string& name) const {
+  const auto found = seconds_.find(name);
+  return found != seconds_.end() ? found->second : 0.0;
+}
+
+double RecordingReporter::counter(const std::string& name, const std::string& counter) const {
+  const auto found = counters_.find(name);
+  if (found == counters_.end()) return 0.0;
+  const auto value = found->second.find(counter);
+  return value != found->second.end() ? static_cast<double>(value->second) : 0.0;
+}
+
 }  // namespace rfrecon::bench

@@ -1,5 +1,10 @@
-// Helpers shared by the benchmarks: the machine's memory-bandwidth roofline and throughput counters against it.
+// Helpers shared by the benchmarks: the machine's memory-bandwidth roofline, throughput counters against it, and a
+// reporter that keeps the figures main() needs for ratios measured in the same run.
 #pragma once
+
+#include <map>
+#include <string>
+#include <vector>
 
 #include <benchmark/benchmark.h>
 
@@ -13,5 +18,18 @@ double host_stream_bytes_per_second();
 // Sets "GB/s" and "roofline_fraction" (achieved bandwidth / host_stream_bytes_per_second()) for `bytes_per_iteration`
 // bytes moved each iteration. Call after the timing loop.
 void set_bandwidth_counters(benchmark::State& state, double bytes_per_iteration);
+
+// Console output that also keeps, per benchmark function name, the real time per iteration in seconds (the median
+// when --benchmark_repetitions aggregates) and its counters.
+class RecordingReporter : public benchmark::ConsoleReporter {
+ public:
+  void ReportRuns(const std::vector<Run>& runs) override;
+  double seconds(const std::string& name) const;                              // 0 when it did not run
+  double counter(const std::string& name, const std::string& counter) const;  // 0 when absent
+
+ private:
+  std::map<std::string, double> seconds_;
+  std::map<std::string, benchmark::UserCounters> counters_;
+};
 
 }  // namespace rfrecon::bench

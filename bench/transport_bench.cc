@@ -3,7 +3,6 @@
 // GrayCodePattern decoding of the same frames and the host's memory-bandwidth roofline (bench/bench_common.h).
 // Prints the ratios after the runs. Frames are synthetic (a plane seen at 0.8 projector pixels per camera pixel).
 #include <cstdio>
-#include <map>
 #include <numeric>
 
 #include <benchmark/benchmark.h>
@@ -188,31 +187,12 @@ BENCHMARK(BM_DecodeOpenCV)->Unit(benchmark::kMillisecond)->Iterations(2)->UseRea
 BENCHMARK(BM_CompressReference)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
 BENCHMARK(BM_CompressOpenCL)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
 
-// Console output plus the real time per iteration of each benchmark, for the ratios.
-class RecordingReporter : public benchmark::ConsoleReporter {
- public:
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const auto& run : runs) {
-      seconds_[run.run_name.function_name] = run.GetAdjustedRealTime() / 1e3;  // reported in ms
-      const auto roofline = run.counters.find("roofline_fraction");
-      roofline_[run.run_name.function_name] = roofline != run.counters.end() ? double(roofline->second) : 0.0;
-    }
-    ConsoleReporter::ReportRuns(runs);
-  }
-  double roofline(const std::string& name) const { return roofline_.count(name) != 0 ? roofline_.at(name) : 0.0; }
-  double seconds(const std::string& name) const { return seconds_.count(name) != 0 ? seconds_.at(name) : 0.0; }
-
- private:
-  std::map<std::string, double> seconds_;
-  std::map<std::string, double> roofline_;
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  RecordingReporter reporter;
+  rfrecon::bench::RecordingReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
   const auto ratio = [](double a, double b) { return b > 0.0 ? a / b : 0.0; };
   const double opencv = reporter.seconds("BM_DecodeOpenCV");
@@ -222,9 +202,10 @@ int main(int argc, char** argv) {
   std::printf(
       "fraction of the host streaming roofline (%.2f GB/s): decode reference %.2f, decode OpenCL %.2f, "
       "compress reference %.2f, compress OpenCL %.2f\n",
-      rfrecon::bench::host_stream_bytes_per_second() / 1e9, reporter.roofline("BM_DecodeReference"),
-      reporter.roofline("BM_DecodeOpenCL"), reporter.roofline("BM_CompressReference"),
-      reporter.roofline("BM_CompressOpenCL"));
+      rfrecon::bench::host_stream_bytes_per_second() / 1e9, reporter.counter("BM_DecodeReference", "roofline_fraction"),
+      reporter.counter("BM_DecodeOpenCL", "roofline_fraction"),
+      reporter.counter("BM_CompressReference", "roofline_fraction"),
+      reporter.counter("BM_CompressOpenCL", "roofline_fraction"));
   benchmark::Shutdown();
   return 0;
 }

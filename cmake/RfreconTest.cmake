@@ -1,7 +1,7 @@
-# rfrecon_add_test(NAME SOURCES... [LABELS l...] [FIXTURES f...]): one GoogleTest executable registered with ctest.
+# rfrecon_add_test(NAME SOURCES... [LABELS l...] [FIXTURES f]): one GoogleTest executable registered with ctest.
 # Label "kernel" marks tests that run OpenCL kernels (.ci/run runs those again under oclgrind); label "accuracy"
-# marks end-to-end accuracy tests on rendered scenes (skipped in the sanitizer pass for time). FIXTURES names ctest
-# fixtures (e.g. a rendered scene) the tests need.
+# marks end-to-end accuracy tests on rendered scenes (skipped in the sanitizer pass for time). FIXTURES names the ctest
+# fixture (e.g. a rendered scene) the tests need; it may REQUIRE others.
 include(GoogleTest)
 function(rfrecon_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;LABELS;FIXTURES" ${ARGN})
@@ -12,6 +12,12 @@ function(rfrecon_add_test name)
   target_compile_definitions(${name} PRIVATE RFRECON_FIXTURES_DIR="${CMAKE_BINARY_DIR}/fixtures"
                                              RFRECON_CLI_PATH="$<TARGET_FILE:rfrecon_cli>")
   add_dependencies(${name} rfrecon_cli)
+  # gtest_discover_tests keeps only the first element of a list property: tests name one fixture, which REQUIRES
+  # the others (ctest sets up required fixtures transitively).
+  list(LENGTH ARG_FIXTURES fixture_count)
+  if(fixture_count GREATER 1)
+    message(FATAL_ERROR "${name}: name one fixture and chain the others with REQUIRES")
+  endif()
   gtest_discover_tests(${name} PROPERTIES LABELS "${ARG_LABELS}" FIXTURES_REQUIRED "${ARG_FIXTURES}"
     DISCOVERY_TIMEOUT 60 WORKING_DIRECTORY ${CMAKE_BINARY_DIR})
 endfunction()

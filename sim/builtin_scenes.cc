@@ -10,14 +10,20 @@ namespace rfrecon::sim {
 using nlohmann::json;
 
 namespace {
-// The rig of the paper's experiment: 640x480 camera and projector with equal 800 px focal lengths, projector 150 mm
-// to the right of the camera, toed in toward the scene centre 600 mm ahead.
-json default_rig(json scene) {
-  scene["camera"] = {{"size", {640, 480}}, {"focal", {800.0, 800.0}}, {"principal_point", {319.5, 239.5}}};
+// The lab rig every built-in scene shares, so that a rig calibrated from `checkerboard-poses` fits the object scenes
+// (as in the paper, where the same rig captured the boards and the cube): 640x480 camera and projector with mild lens
+// distortion and an off-centre projector principal point, the projector 150 mm to the right of the camera and toed
+// in toward the scene 560-600 mm ahead.
+json lab_rig(json scene) {
+  scene["camera"] = {{"size", {640, 480}},
+                     {"focal", {820.0, 818.0}},
+                     {"principal_point", {322.0, 236.5}},
+                     {"distortion", {-0.08, 0.05, 0.0005, -0.0003, 0.0}}};
   scene["projector"] = {{"size", {640, 480}},
-                        {"focal", {800.0, 800.0}},
-                        {"principal_point", {319.5, 239.5}},
-                        {"pose", {{"position", {150.0, 0.0, 0.0}}, {"look_at", {0.0, 0.0, 600.0}}}}};
+                        {"focal", {880.0, 880.0}},
+                        {"principal_point", {319.5, 290.0}},
+                        {"distortion", {0.03, 0.0, 0.0, 0.0, 0.0}},
+                        {"pose", {{"position", {150.0, 0.0, 0.0}}, {"look_at", {0.0, 30.0, 560.0}}}}};
   return scene;
 }
 
@@ -29,7 +35,7 @@ json wall(double z) {
 }
 
 json cube_anisotropic() {
-  json scene = default_rig({{"name", "cube-anisotropic"}});
+  json scene = lab_rig({{"name", "cube-anisotropic"}});
   scene["radiometry"] = {{"intensity", 2.0e6}};
   scene["objects"] = {
       {{"name", "cube"},
@@ -43,7 +49,7 @@ json cube_anisotropic() {
 }
 
 json sphere_ward() {
-  json scene = default_rig({{"name", "sphere-ward"}});
+  json scene = lab_rig({{"name", "sphere-ward"}});
   scene["radiometry"] = {{"intensity", 2.0e6}};
   scene["objects"] = {
       {{"name", "sphere"},
@@ -57,7 +63,7 @@ json sphere_ward() {
 }
 
 json cylinder_brushed() {
-  json scene = default_rig({{"name", "cylinder-brushed"}});
+  json scene = lab_rig({{"name", "cylinder-brushed"}});
   scene["radiometry"] = {{"intensity", 2.0e6}};
   scene["objects"] = {
       {{"name", "cylinder"},
@@ -72,7 +78,7 @@ json cylinder_brushed() {
 }
 
 json plane_lambert() {
-  json scene = default_rig({{"name", "plane-lambert"}});
+  json scene = lab_rig({{"name", "plane-lambert"}});
   scene["objects"] = {{{"name", "plane"},
                        {"shape", "plane"},
                        {"size", {400.0, 300.0}},
@@ -86,16 +92,7 @@ json plane_lambert() {
 // off-centre projector principal point, as a real calibration would face. The capture includes the dot grid, so the
 // dual images T^T 1 are built from full transport rows (as in dual photography), not from Gray code alone.
 json checkerboard_poses() {
-  json scene{{"name", "checkerboard-poses"}};
-  scene["camera"] = {{"size", {640, 480}},
-                     {"focal", {820.0, 818.0}},
-                     {"principal_point", {322.0, 236.5}},
-                     {"distortion", {-0.08, 0.05, 0.0005, -0.0003, 0.0}}};
-  scene["projector"] = {{"size", {640, 480}},
-                        {"focal", {880.0, 880.0}},
-                        {"principal_point", {319.5, 290.0}},
-                        {"distortion", {0.03, 0.0, 0.0, 0.0, 0.0}},
-                        {"pose", {{"position", {150.0, 0.0, 0.0}}, {"look_at", {0.0, 30.0, 560.0}}}}};
+  json scene = lab_rig({{"name", "checkerboard-poses"}});
   scene["radiometry"] = {{"intensity", 8.0e5}};
   scene["capture"] = {{"dot_spacing", 8}};
   scene["objects"] = {{{"name", "board"},

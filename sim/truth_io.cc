@@ -1,13 +1,10 @@
 // Ground-truth files: OpenCV images for the maps, binary PLY for the points, the rig YAML for the calibration.
 #include "sim/truth_io.h"
 
-#include <cmath>
-#include <fstream>
-
 #include <opencv2/core/eigen.hpp>
-#include <opencv2/imgcodecs.hpp>
 
-#include "host/common/atomic_file.h"
+#include "host/common/image_file.h"
+#include "host/common/ply.h"
 
 namespace rfrecon::sim {
 
@@ -36,35 +33,8 @@ calib::StereoRig true_rig(const Scene& scene) {
   return rig;
 }
 
-namespace {
-// Float TIFFs are written uncompressed: OpenCV 4.6 corrupts multi-channel float TIFFs with its default LZW.
-void write_image(const fs::path& file, const cv::Mat& image) {
-  const std::vector<int> params{cv::IMWRITE_TIFF_COMPRESSION, 1};
-  if (!cv::imwrite(file.string(), image, image.depth() == CV_32F ? params : std::vector<int>{})) {
-    throw std::runtime_error("cannot write " + file.string());
-  }
-}
-}  // namespace
-
 void write_points_ply(const GroundTruth& truth, const fs::path& file) {
-  std::string body;
-  std::size_t count = 0;
-  for (int y = 0; y < truth.depth_mm.rows; ++y) {
-    for (int x = 0; x < truth.depth_mm.cols; ++x) {
-      if (!std::isfinite(truth.depth_mm.at<float>(y, x))) continue;
-      const cv::Vec3f p = truth.points_mm.at<cv::Vec3f>(y, x), n = truth.normals.at<cv::Vec3f>(y, x);
-      const float values[6] = {p[0], p[1], p[2], n[0], n[1], n[2]};
-      body.append(reinterpret_cast<const char*>(values), sizeof values);  // x86/ARM hosts are little-endian
-      ++count;
-    }
-  }
-  const std::string header =
-      "ply\nformat binary_little_endian 1.0\ncomment rfrecon synthetic ground truth, camera "
-      "frame, mm\nelement vertex " +
-      std::to_string(count) +
-      "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\nproperty "
-      "float ny\nproperty float nz\nend_header\n";
-  write_file_atomically(file, header + body);
+  write_point_cloud_ply(file, "rfrecon synthetic ground truth, camera frame, mm", truth.points_mm, truth.normals);
 }
 
 void write_ground_truth(const GroundTruth& truth, const fs::path& dir) {

@@ -8,6 +8,7 @@
 
 #include "calib/board_detection.h"
 #include "host/capture/manifest.h"
+#include "host/sched/spmv_on_devices.h"
 #include "host/transport/accumulator.h"
 #include "host/transport/pipeline.h"
 #include "host/transport/spmv.h"
@@ -58,17 +59,16 @@ bool align_corner_order(const std::vector<cv::Point2f>& camera_corners, const cv
 }
 
 PoseObservation observe_pose(const fs::path& pose_dir, const PoseSource& source, const calib::BoardSpec& board,
-                             cl::DeviceContext& device, cl::ProgramCache& programs) {
+                             std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
   PoseObservation pose;
   pose.name = pose_dir.filename().empty() ? pose_dir.parent_path().filename().string() : pose_dir.filename().string();
   const auto manifest = transport::open_capture(pose_dir, source.layout, source.projector_size);
   transport::TransportSetup setup;
   setup.thresholds = source.thresholds;
   setup.entries_per_pixel = 8;
-  const auto run =
-      transport::compute_transport(pose_dir, manifest, setup, [&](const transport::TransportSetup& resolved) {
-        return transport::make_device_accumulator(resolved, device, programs, transport::KernelEntry::kNdRange);
-      });
+  const auto run = transport::compute_transport_on_devices(pose_dir, manifest, setup, devices, programs,
+                                                           transport::KernelEntry::kNdRange);
+  pose.schedule = run.schedule;
   const auto& transport = run.transport;
 
   for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
@@ -80,7 +80,9 @@ PoseObservation observe_pose(const fs::path& pose_dir, const PoseSource& source,
   }
   const std::vector<float> ones(transport.camera_pixels(), 1.0f);
   const auto transposed = transport::transpose(transport);
-  const auto dual = transport::dual_opencl(device, programs, transport::KernelEntry::kNdRange, transposed, ones);
+  auto product = sched::dual_on_devices(devices, programs, transport::KernelEntry::kNdRange, transposed, ones);
+  pose.schedule.push_back(product.report);
+  const std::vector<float>& dual = product.image;
   const cv::Mat dual_image(transport.setup.projector_size, CV_32F, const_cast<float*>(dual.data()));
   cv::Mat reached(transport.setup.projector_size, CV_8U);
   for (int q = 0; q < static_cast<int>(reached.total()); ++q) {

@@ -12,6 +12,7 @@
 #include "calib/rig.h"
 #include "host/cl/device_context.h"
 #include "host/cl/program_cache.h"
+#include "host/sched/report.h"
 #include "host/transport/transport_types.h"
 
 namespace rfrecon::calibration {
@@ -23,6 +24,7 @@ struct PoseObservation {
   std::vector<cv::Point2f> camera_corners;     // empty when the board was not found
   std::vector<cv::Point2f> projector_corners;  // empty when the board was not found; same order as camera_corners
   std::string problem;                         // why the pose is unusable; empty when both corner sets were found
+  std::vector<sched::RunReport> schedule;      // the transport and dual stages per device (host/sched)
   bool usable() const { return problem.empty(); }
 };
 
@@ -33,12 +35,13 @@ struct PoseSource {
   transport::Thresholds thresholds;
 };
 
-// Builds T for the capture in `pose_dir` on `device`, forms T^T 1, and finds the board in the white frame and in the
-// dual image. The projector corners are put in the camera corners' order by mapping two camera corners through
-// the decoded correspondences (the detector may number a board from either end). Input errors (missing frames,
+// Builds T for the capture in `pose_dir` on `devices` (host/sched), forms T^T 1, and finds the board in the white frame
+// and in the dual image. The projector corners are put in the camera corners' order by mapping two camera corners
+// through the decoded correspondences (the detector may number a board from either end). Input errors (missing frames,
 // bad manifest) throw InputError; a board that is not found is reported in `problem`.
 PoseObservation observe_pose(const std::filesystem::path& pose_dir, const PoseSource& source,
-                             const calib::BoardSpec& board, cl::DeviceContext& device, cl::ProgramCache& programs);
+                             const calib::BoardSpec& board, std::vector<cl::DeviceContext>& devices,
+                             cl::ProgramCache& programs);
 
 // Reverses `projector_corners` when that matches the camera corners mapped through `correspondence` (camera pixel
 // -> projector x, y; CV_32FC2, NaN where unknown) better than the given order. Returns false when neither end of the

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <spdlog/spdlog.h>
 
@@ -20,6 +21,7 @@
 #include "host/common/atomic_file.h"
 #include "host/common/errors.h"
 #include "host/common/progress.h"
+#include "host/sched/report.h"
 
 namespace rfrecon::cli {
 
@@ -133,6 +135,19 @@ void run_calibrate_camera(const CameraOptions& options) {
 }
 
 // ---- calibrate --------------------------------------------------------------------------------------------------
+// Adds each stage report of one pose to the stage of the same name in `total`.
+void merge_stages(std::vector<sched::RunReport>& total, const std::vector<sched::RunReport>& pose) {
+  for (const auto& stage : pose) {
+    const auto same = std::find_if(total.begin(), total.end(),
+                                   [&](const sched::RunReport& existing) { return existing.stage == stage.stage; });
+    if (same == total.end()) {
+      total.push_back(stage);
+    } else {
+      same->merge(stage);
+    }
+  }
+}
+
 struct StereoOptions {
   std::vector<std::string> poses;
   BoardOptions board;
@@ -148,8 +163,8 @@ void run_calibrate(const StereoOptions& options) {
   source.layout = options.capture.layout;
   if (!options.capture.projector.empty()) source.projector_size = parse_size(options.capture.projector, "--projector");
   auto devices = cl::open_devices(options.devices);
-  auto& device = devices.front();
   cl::ProgramCache programs;
+  std::vector<sched::RunReport> schedule;  // per stage, summed over the poses
   StagingDirectory report(options.report.empty() ? default_report_dir(options.output) : fs::path(options.report), true);
 
   std::vector<calib::StereoView> views;
@@ -157,7 +172,8 @@ void run_calibrate(const StereoOptions& options) {
   cv::Size projector_size;
   Progress progress("calibrate", options.poses.size(), "poses");
   for (const auto& pose_dir : options.poses) {
-    const auto pose = calibration::observe_pose(pose_dir, source, board, device, programs);
+    const auto pose = calibration::observe_pose(pose_dir, source, board, devices, programs);
+    merge_stages(schedule, pose.schedule);
     if (camera_size.empty()) {
       camera_size = pose.camera_image.size();
       projector_size = pose.dual_image.size();
@@ -191,8 +207,10 @@ void run_calibrate(const StereoOptions& options) {
       report.path() / "errors.png",
       calibration::draw_error_chart(names, {"camera", "projector"},
                                     {result.per_view_camera_errors, result.per_view_projector_errors}));
+  write_file_atomically(report.path() / "schedule.json", nlohmann::json(schedule).dump(2) + "\n");
   calib::write_rig(result.rig, options.output);
   report.commit();
+  sched::log_reports(schedule);
 
   std::printf("%zu of %zu poses used; stereo reprojection RMS %.4f px\n", views.size(), options.poses.size(),
               result.rig.rms);

@@ -1,6 +1,8 @@
 // `rfrecon dual`: the dual image T^T 1 (projector view) or, with --primal, the primal image T 1 of a T.h5.
 #include <algorithm>
+#include <chrono>
 
+#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <spdlog/spdlog.h>
 
@@ -8,6 +10,7 @@
 #include "host/cli/commands.h"
 #include "host/common/atomic_file.h"
 #include "host/common/errors.h"
+#include "host/sched/spmv_on_devices.h"
 #include "host/transport/spmv.h"
 #include "host/transport/transport_file.h"
 
@@ -17,6 +20,7 @@ namespace {
 struct DualOptions {
   std::filesystem::path input;
   std::filesystem::path output;
+  std::filesystem::path summary;
   bool primal = false;
   std::string devices;
 };
@@ -48,23 +52,32 @@ void run_dual(const DualOptions& options) {
   auto devices = cl::open_devices(options.devices);
   cl::ProgramCache programs;
   const auto entry = transport::KernelEntry::kNdRange;
+  const auto start = std::chrono::steady_clock::now();
+  sched::ProductRun run;
   cv::Mat image;
   if (options.primal) {
     const std::vector<float> light(transport.projector_pixels(), 1.0f);
     image = cv::Mat(transport.setup.camera_size, CV_32F);
-    const auto values = transport::primal_opencl(devices.front(), programs, entry, transport, light);
-    std::copy(values.begin(), values.end(), image.begin<float>());
+    run = sched::primal_on_devices(devices, programs, entry, transport, light);
   } else {
     const std::vector<float> light(transport.camera_pixels(), 1.0f);
     image = cv::Mat(transport.setup.projector_size, CV_32F);
-    const auto values =
-        transport::dual_opencl(devices.front(), programs, entry, transport::transpose(transport), light);
-    std::copy(values.begin(), values.end(), image.begin<float>());
+    run = sched::dual_on_devices(devices, programs, entry, transport::transpose(transport), light);
   }
+  std::copy(run.image.begin(), run.image.end(), image.begin<float>());
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  sched::log_reports({run.report});
   const auto bytes = encode(image, options.output);
   write_file_atomically(options.output, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
   spdlog::info("{}: wrote {} image {}x{} to {}", options.primal ? "primal" : "dual",
                options.primal ? "camera" : "projector", image.cols, image.rows, options.output.string());
+  if (!options.summary.empty()) {
+    const nlohmann::json summary = {{"command", options.primal ? "primal" : "dual"},
+                                    {"output", options.output.string()},
+                                    {"kernel_seconds", seconds},
+                                    {"schedule", nlohmann::json::array({run.report})}};
+    write_file_atomically(options.summary, summary.dump(2) + "\n");
+  }
 }
 }  // namespace
 
@@ -74,6 +87,7 @@ void add_dual_command(CLI::App& app) {
   command->add_option("transport", options->input, "Compressed light transport (T.h5)")->required();
   command->add_option("-o,--output", options->output, "Image: .png (16-bit, scaled) or .tiff (float)")->required();
   command->add_flag("--primal", options->primal, "Write the primal image T 1 (camera view) instead");
+  command->add_option("--summary", options->summary, "Also write the timing and per-device shares to this JSON");
   add_devices_option(command, options->devices);
   command->callback([options] { run_dual(*options); });
 }

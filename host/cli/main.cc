@@ -45,6 +45,9 @@ int main(int argc, char** argv) {
   add_transport_command(app);
   add_dual_command(app);
   add_calibrate_commands(app);
+  add_reconstruct_command(app);
+  add_evaluate_command(app);
+  add_demo_command(app);
 
   try {
     app.parse(argc, argv);

@@ -2,11 +2,14 @@
 #include <chrono>
 #include <cstdio>
 
+#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
 #include "host/cl/device_selection.h"
 #include "host/cli/capture_options.h"
 #include "host/cli/commands.h"
+#include "host/common/atomic_file.h"
+#include "host/sched/report.h"
 #include "host/transport/pipeline.h"
 #include "host/transport/transport_file.h"
 
@@ -16,6 +19,7 @@ namespace {
 struct TransportOptions {
   std::filesystem::path capture_dir;
   std::filesystem::path output;
+  std::filesystem::path summary;
   CaptureOptions capture;
   std::string devices;
   std::string entry = "ndrange";
@@ -25,15 +29,15 @@ struct TransportOptions {
 void run_transport(const TransportOptions& options) {
   const auto manifest = open_capture(options.capture_dir, options.capture);
   auto devices = cl::open_devices(options.devices);
-  cl::DeviceContext& device = devices.front();
-  spdlog::info("transport: {} frames from {} on {}", manifest.frames.size(), options.capture_dir.string(),
-               cl::describe(device.info()));
+  for (const auto& device : devices) {
+    spdlog::info("transport: {} frames from {} on {}", manifest.frames.size(), options.capture_dir.string(),
+                 cl::describe(device.info()));
+  }
   cl::ProgramCache programs;
   const auto entry =
       options.entry == "single" ? transport::KernelEntry::kSingleWorkItem : transport::KernelEntry::kNdRange;
-  auto run = transport::compute_transport(options.capture_dir, manifest, options.setup, [&](const auto& setup) {
-    return transport::make_device_accumulator(setup, device, programs, entry);
-  });
+  auto run =
+      transport::compute_transport_on_devices(options.capture_dir, manifest, options.setup, devices, programs, entry);
   const auto start = std::chrono::steady_clock::now();
   transport::write_transport(run.transport, options.output);
   run.timings.push_back(
@@ -49,6 +53,17 @@ void run_transport(const TransportOptions& options) {
     total += timing.seconds;
   }
   std::printf("  %-12s %8.3f s\n", "total", total);
+  sched::log_reports(run.schedule);
+  if (!options.summary.empty()) {
+    nlohmann::json summary = {{"command", "transport"},
+                              {"output", options.output.string()},
+                              {"camera_pixels", run.transport.camera_pixels()},
+                              {"decoded_pixels", valid},
+                              {"total_seconds", total},
+                              {"schedule", run.schedule}};
+    for (const auto& timing : run.timings) summary["stage_seconds"][timing.stage] = timing.seconds;
+    write_file_atomically(options.summary, summary.dump(2) + "\n");
+  }
 }
 }  // namespace
 
@@ -57,6 +72,7 @@ void add_transport_command(CLI::App& app) {
   auto* command = app.add_subcommand("transport", "Decode a capture and compress its light transport to T.h5");
   command->add_option("capture_dir", options->capture_dir, "Capture directory")->required();
   command->add_option("-o,--output", options->output, "Output file (T.h5)")->required();
+  command->add_option("--summary", options->summary, "Also write stage timings and per-device shares to this JSON");
   add_capture_options(command, options->capture);
   add_devices_option(command, options->devices);
   auto& setup = options->setup;
@@ -67,8 +83,8 @@ void add_transport_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--white-threshold", setup.thresholds.white, "Gray bit trusted when |pattern - inverse| exceeds")
       ->capture_default_str();
-  command->add_option("--noise-threshold", setup.thresholds.noise, "Transport entries at or below are dropped")
-      ->capture_default_str();
+  command->add_option("--noise-threshold", setup.thresholds.noise,
+                      "Transport entries at or below are dropped (default: 2.5 DN at the capture's bit depth)");
   command->add_option("--entry", options->entry, "Kernel entry: ndrange or single (single work-item, FPGA)")
       ->check(CLI::IsMember({"ndrange", "single"}))
       ->capture_default_str();

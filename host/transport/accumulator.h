@@ -32,10 +32,12 @@ class TransportAccumulator {
 // The bit mask of Gray bit `bit` (0 = most significant) in an axis code word.
 std::uint32_t gray_bit_mask(const TransportSetup& setup, GrayAxis axis, int bit);
 
-std::unique_ptr<TransportAccumulator> make_reference_accumulator(const TransportSetup& setup);
+// An automatic noise threshold (setup.thresholds.noise <= 0) is resolved for an 8-bit camera here; compute_transport
+// resolves it for the capture's bit depth before it makes an accumulator.
+std::unique_ptr<TransportAccumulator> make_reference_accumulator(TransportSetup setup);
 
 // Kernels of kernels/transport/decode.cl and compress.cl; the ELL state stays on the device until finish().
-std::unique_ptr<TransportAccumulator> make_device_accumulator(const TransportSetup& setup, cl::DeviceContext& device,
+std::unique_ptr<TransportAccumulator> make_device_accumulator(TransportSetup setup, cl::DeviceContext& device,
                                                               cl::ProgramCache& programs, KernelEntry entry);
 
 }  // namespace rfrecon::transport

@@ -147,8 +147,9 @@ class DeviceAccumulator final : public TransportAccumulator {
 
 }  // namespace
 
-std::unique_ptr<TransportAccumulator> make_device_accumulator(const TransportSetup& setup, cl::DeviceContext& device,
+std::unique_ptr<TransportAccumulator> make_device_accumulator(TransportSetup setup, cl::DeviceContext& device,
                                                               cl::ProgramCache& programs, KernelEntry entry) {
+  setup.thresholds = resolve_thresholds(setup.thresholds, 8);
   return std::make_unique<DeviceAccumulator>(setup, device, programs, entry);
 }
 

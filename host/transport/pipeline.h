@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "host/capture/manifest.h"
+#include "host/sched/report.h"
 #include "host/transport/accumulator.h"
 
 namespace rfrecon::transport {
@@ -25,8 +26,9 @@ struct StageTiming {
 
 struct TransportRun {
   CompressedTransport transport;
-  std::vector<StageTiming>
-      timings;  // "read frames", "setup" (buffers, kernel builds), "decode", "compress", "finalize"
+  // "read frames", "setup" (buffers, kernel builds; within "decode" on devices), "decode", "compress", "finalize"
+  std::vector<StageTiming> timings;
+  std::vector<sched::RunReport> schedule;  // per stage and device (compute_transport_on_devices only)
 };
 
 using AccumulatorFactory = std::function<std::unique_ptr<TransportAccumulator>(const TransportSetup&)>;
@@ -37,5 +39,17 @@ using AccumulatorFactory = std::function<std::unique_ptr<TransportAccumulator>(c
 // Throws InputError naming the file for a missing, unreadable or mismatched frame, and for an all-dark capture.
 TransportRun compute_transport(const std::filesystem::path& capture_dir, capture::CaptureManifest manifest,
                                TransportSetup setup, const AccumulatorFactory& make_accumulator);
+
+// Camera row blocks per device when several devices share the transport stage (one block on a single device).
+inline constexpr int kBlocksPerDevice = 4;
+
+// The same stage on every device of `devices` (host/sched/block_runner.h): camera rows cut into blocks, each block's
+// per-pixel state on the device that first took it, every frame read once and fed to all blocks. The next frames
+// are read while the devices work on the current ones. When a device fails, its blocks are rebuilt on the others
+// by re-reading the earlier frames; only when all fail does it throw (sched::AllDevicesFailed). The kernels are
+// per pixel, so the result equals the single-device result bit for bit.
+TransportRun compute_transport_on_devices(const std::filesystem::path& capture_dir, capture::CaptureManifest manifest,
+                                          TransportSetup setup, std::vector<cl::DeviceContext>& devices,
+                                          cl::ProgramCache& programs, KernelEntry entry);
 
 }  // namespace rfrecon::transport

@@ -139,7 +139,8 @@ class ReferenceAccumulator final : public TransportAccumulator {
 
 }  // namespace
 
-std::unique_ptr<TransportAccumulator> make_reference_accumulator(const TransportSetup& setup) {
+std::unique_ptr<TransportAccumulator> make_reference_accumulator(TransportSetup setup) {
+  setup.thresholds = resolve_thresholds(setup.thresholds, 8);
   return std::make_unique<ReferenceAccumulator>(setup);
 }
 

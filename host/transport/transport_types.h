@@ -28,12 +28,24 @@ using cl::KernelEntry;
 
 // Thresholds in linear camera units (1.0 = full scale, black level removed; host/capture/manifest.h).
 // Defaults: black 0.04 ~ 10 DN and white 0.02 ~ 5 DN of an 8-bit camera (OpenCV's GrayCodePattern uses
-// 40 and 5 DN); noise 0.01 ~ 2.5 DN, about 3 sigma of 8-bit quantization plus typical read noise.
+// 40 and 5 DN); noise: automatic, default_noise_threshold() of the capture's bit depth.
 struct Thresholds {
   float black = 0.04f;  // a pixel is lit when white - black > black
   float white = 0.02f;  // a Gray bit is trusted when |pattern - inverse| > white
-  float noise = 0.01f;  // transport entries (black subtracted) at or below are dropped
+  float noise = 0.0f;   // transport entries (black subtracted) at or below are dropped; <= 0: automatic
 };
+
+// 2.5 DN at the camera's bit depth (0.0098 at 8 bits, 0.0024 at 10 bits): about 3 sigma of 1 DN read noise in the
+// difference of a dot frame and the black frame. A fixed threshold in linear units would be either too low for
+// 8-bit cameras (keeping noise) or too high for deeper ones, dropping the faint tails of each pixel's spot, which
+// biases the primal and dual images (T 1, T^T 1) low by a few per cent and the depth stage's slopes with them.
+inline float default_noise_threshold(int bit_depth) { return 2.5f / static_cast<float>((1 << bit_depth) - 1); }
+
+// `thresholds` with an automatic noise threshold (<= 0) replaced by default_noise_threshold(bit_depth).
+inline Thresholds resolve_thresholds(Thresholds thresholds, int bit_depth) {
+  if (thresholds.noise <= 0.0f) thresholds.noise = default_noise_threshold(bit_depth);
+  return thresholds;
+}
 
 // What the compression needs to know before the first frame.
 struct TransportSetup {

@@ -8,6 +8,8 @@
 //   RF_PIPELINE_II(n)     before a loop: ask for initiation interval n (one iteration every n clocks).
 //   RF_UNROLL             before a loop with a constant trip count: unroll it fully.
 //   RF_UNROLL_N(n)        before a loop: unroll by n.
+//   RF_IVDEP_SAFELEN(n)   before a loop: a loop-carried dependency spans at least n iterations (rows interleaved
+//                         by a single work-item kernel), so the loop can still start one iteration per clock.
 //   RF_PARTITION_COMPLETE after a private array's name: keep every element in registers (fully partitioned),
 //                         e.g. `float best[K] RF_PARTITION_COMPLETE;`.
 // On PoCL, GPUs and oclgrind all of them are empty, so the same file runs everywhere.
@@ -22,18 +24,21 @@
 #define RF_PIPELINE_II(n) RF_PRAGMA_(ii n)
 #define RF_UNROLL RF_PRAGMA_(unroll)
 #define RF_UNROLL_N(n) RF_PRAGMA_(unroll n)
+#define RF_IVDEP_SAFELEN(n) RF_PRAGMA_(ivdep safelen(n))
 #define RF_PARTITION_COMPLETE __attribute__((register))
 #elif defined(RF_TARGET_XILINX_FPGA)
 #define RF_SINGLE_TASK __attribute__((reqd_work_group_size(1, 1, 1)))
 #define RF_PIPELINE_II(n) __attribute__((xcl_pipeline_loop(n)))
 #define RF_UNROLL __attribute__((opencl_unroll_hint))
 #define RF_UNROLL_N(n) __attribute__((opencl_unroll_hint(n)))
+#define RF_IVDEP_SAFELEN(n)  // v++ has no OpenCL C equivalent; it schedules the interleaved loop at a longer II
 #define RF_PARTITION_COMPLETE __attribute__((xcl_array_partition(complete, 1)))
 #else
 #define RF_SINGLE_TASK
 #define RF_PIPELINE_II(n)
 #define RF_UNROLL
 #define RF_UNROLL_N(n)
+#define RF_IVDEP_SAFELEN(n)
 #define RF_PARTITION_COMPLETE
 #endif
 

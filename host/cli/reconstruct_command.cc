@@ -1,0 +1,95 @@
+// `rfrecon reconstruct`: depth, normals, confidence and a point cloud from T.h5 and a calibrated rig.
+#include <cstdio>
+
+#include <spdlog/spdlog.h>
+
+#include "calib/rig.h"
+#include "host/cl/device_selection.h"
+#include "host/cli/commands.h"
+#include "host/depth/reconstruct.h"
+#include "host/reconstruct/outputs.h"
+#include "host/transport/transport_file.h"
+
+namespace rfrecon::cli {
+
+namespace {
+struct ReconstructOptions {
+  std::filesystem::path transport;
+  std::filesystem::path rig;
+  std::filesystem::path out_dir;
+  std::string method = "fused";
+  std::string devices;
+  std::string entry = "ndrange";
+  bool force = false;
+  depth::DepthOptions depth;
+};
+
+void run_reconstruct(ReconstructOptions options) {
+  options.depth.method = depth::parse_method(options.method);
+  options.depth.entry = options.entry == "single" ? cl::KernelEntry::kSingleWorkItem : cl::KernelEntry::kNdRange;
+  const auto transport = transport::read_transport(options.transport);
+  const auto rig = calib::read_rig(options.rig);
+  auto devices = cl::open_devices(options.devices);
+  cl::ProgramCache programs;
+  spdlog::info("reconstruct: {} from {} with {} on {}", options.method, options.transport.string(),
+               options.rig.string(), cl::describe(devices.front().info()));
+  auto run = depth::reconstruct_depth(transport, rig, options.rig.string(), options.depth, devices, programs);
+  run.summary["transport_file"] = options.transport.string();
+  run.summary["calibration_file"] = options.rig.string();
+  reconstruct::write_reconstruction(run.maps, run.summary, options.out_dir, options.force);
+
+  std::printf("reconstruct (%s): %d of %d camera pixels, wrote %s\nstage timings:\n", options.method.c_str(),
+              run.summary["reconstructed_pixels"].get<int>(), transport.setup.camera_size.area(),
+              options.out_dir.string().c_str());
+  double total = 0.0;
+  for (const auto& timing : run.summary["timings"]) {
+    std::printf("  %-24s %8.3f s\n", timing["stage"].get<std::string>().c_str(), timing["seconds"].get<double>());
+    total += timing["seconds"].get<double>();
+  }
+  std::printf("  %-24s %8.3f s\n", "total", total);
+}
+}  // namespace
+
+void add_reconstruct_command(CLI::App& app) {
+  auto options = std::make_shared<ReconstructOptions>();
+  auto* command = app.add_subcommand("reconstruct", "Depth, normals and a point cloud from T.h5 and rig.yaml");
+  command->add_option("transport", options->transport, "Compressed light transport (T.h5)")->required();
+  command->add_option("--calib", options->rig, "Calibrated rig (rig.yaml from `rfrecon calibrate`)")->required();
+  command->add_option("-o,--out", options->out_dir, "Output directory (docs/formats.md)")->required();
+  command->add_option("--method", options->method, "triangulate, integrate (reciprocity ODE) or fused")
+      ->check(CLI::IsMember({"triangulate", "integrate", "fused"}))
+      ->capture_default_str();
+  command->add_flag("--force", options->force, "Replace an existing output directory");
+  add_devices_option(command, options->devices);
+  command->add_option("--entry", options->entry, "Kernel entry: ndrange or single (single work-item, FPGA)")
+      ->check(CLI::IsMember({"ndrange", "single"}))
+      ->capture_default_str();
+  auto& depth = options->depth;
+  command
+      ->add_option("--epipolar-tolerance", depth.rectification.epipolar_tolerance_px,
+                   "Reject correspondences further than this from their rectified row (px)")
+      ->capture_default_str();
+  command
+      ->add_option("--saturation", depth.rectification.saturation,
+                   "Drop pixels with a T entry at or above this (linear, 1 = full scale)")
+      ->capture_default_str();
+  command->add_option("--jump", depth.segmentation.jump_relative, "Relative depth step that ends a run")
+      ->capture_default_str();
+  command->add_option("--crease", depth.segmentation.crease_deg, "Change of in-row slope that ends a run (deg)")
+      ->capture_default_str();
+  command->add_option("--passes", depth.integration.passes, "Shooting passes of the integration")
+      ->check(CLI::Range(1, 20))
+      ->capture_default_str();
+  command->add_option("--iterations", depth.fusion.iterations, "Linearised solves of the fusion")
+      ->check(CLI::Range(1, 20))
+      ->capture_default_str();
+  command->add_option("--sigma-disparity", depth.fusion.sigma_disparity_px, "Disparity noise, px (fusion weight)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--sigma-step", depth.fusion.sigma_step_mm, "ODE step error, mm (fusion weight)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->callback([options] { run_reconstruct(*options); });
+}
+
+}  // namespace rfrecon::cli

@@ -1,0 +1,42 @@
+// Depth along rectified rows: reciprocity integration (the paper's method) and its fusion with triangulated
+// positions, as plain C++ references and as OpenCL kernels (kernels/depth/integrate.cl, fuse.cl) on one device.
+// Every call covers the row range [row_begin, row_end) and returns its (row_end - row_begin) x width depths (mm,
+// rectified camera frame, NaN where masked), so a scheduler can split the rows over devices.
+#pragma once
+
+#include <vector>
+
+#include "host/cl/device_context.h"
+#include "host/cl/kernel_entry.h"
+#include "host/cl/program_cache.h"
+#include "host/depth/rectified_rows.h"
+
+namespace rfrecon::depth {
+
+using cl::KernelEntry;
+
+struct IntegrationOptions {
+  int passes = 3;  // shooting passes per run: the first seeds from triangulation, the others rescale the seed
+};
+
+struct FusionOptions {
+  int iterations = 3;               // linearised tridiagonal solves per run
+  float sigma_disparity_px = 0.1f;  // disparity noise of the correspondences: weight of the positions
+  float sigma_step_mm = 0.1f;       // error of one RK4 step of the ODE (intensity noise): weight of the slopes
+};
+
+// Rows [row_begin, row_end) of rows.height; throw std::invalid_argument on a bad range or bad options.
+std::vector<float> integrate_rows_reference(const RectifiedRows& rows, const IntegrationOptions& options, int row_begin,
+                                            int row_end);
+// z_start: the starting depth of rows [row_begin, row_end) (typically their integration), same layout as the result.
+std::vector<float> fuse_rows_reference(const RectifiedRows& rows, const std::vector<float>& z_start,
+                                       const FusionOptions& options, int row_begin, int row_end);
+
+std::vector<float> integrate_rows_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
+                                         const RectifiedRows& rows, const IntegrationOptions& options, int row_begin,
+                                         int row_end);
+std::vector<float> fuse_rows_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
+                                    const RectifiedRows& rows, const std::vector<float>& z_start,
+                                    const FusionOptions& options, int row_begin, int row_end);
+
+}  // namespace rfrecon::depth

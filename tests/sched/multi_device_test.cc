@@ -1,0 +1,195 @@
+// Kernels through the scheduler: several devices give the single-device result bit for bit (each output pixel is
+// computed by one work-item, the same arithmetic in the same order, wherever its tile runs), with and without a
+// failing device. Tiny sizes: CI reruns these under oclgrind, which has one device (two-device cases skip).
+#include <cstdlib>
+#include <cstring>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "host/capture/protocol.h"
+#include "host/cl/device_selection.h"
+#include "host/sched/spmv_on_devices.h"
+#include "host/transport/pipeline.h"
+#include "tests/transport/synthetic_capture.h"
+#include "tests/transport/test_capture_feed.h"
+
+namespace rfrecon::sched {
+namespace {
+
+constexpr const char* kNeedTwoDevices = "needs two OpenCL devices (POCL_DEVICES=\"pthread pthread\")";
+
+using transport::KernelEntry;
+namespace testing = transport::testing;
+
+// Byte equality, so that NaN correspondences compare equal to NaN and -0 differs from +0.
+template <typename T>
+void expect_identical(const std::vector<T>& got, const std::vector<T>& expected, const char* what) {
+  ASSERT_EQ(got.size(), expected.size()) << what;
+  EXPECT_EQ(std::memcmp(got.data(), expected.data(), got.size() * sizeof(T)), 0) << what << " differs";
+}
+
+void expect_identical(const transport::CompressedTransport& got, const transport::CompressedTransport& expected) {
+  expect_identical(got.indices, expected.indices, "indices");
+  expect_identical(got.weights, expected.weights, "weights");
+  expect_identical(got.correspondence, expected.correspondence, "correspondence");
+  expect_identical(got.gray_x, expected.gray_x, "gray_x");
+  expect_identical(got.gray_y, expected.gray_y, "gray_y");
+  expect_identical(got.flags, expected.flags, "flags");
+  expect_identical(got.direct_energy, expected.direct_energy, "direct_energy");
+}
+
+// Sets RFRECON_INJECT_FAULT for one scope (the transport stage reads it like the command line does).
+class InjectedFaults {
+ public:
+  explicit InjectedFaults(const char* spec) { ::setenv(kInjectFaultEnv, spec, 1); }
+  ~InjectedFaults() { ::unsetenv(kInjectFaultEnv); }
+};
+
+struct Capture {
+  testing::PlaneScene scene;
+  std::vector<capture::Pattern> sequence;
+  std::vector<cv::Mat> frames;
+};
+
+Capture tiny_capture() {
+  testing::SceneOptions options;
+  options.camera_size = {24, 20};
+  options.projector_size = {16, 12};
+  Capture capture{testing::make_plane_scene(options), {}, {}};
+  capture.sequence = capture::make_protocol({options.projector_size, 3});
+  capture.frames = testing::render_frames(capture.scene, capture.sequence, 3, 1.0, 7);
+  return capture;
+}
+
+class MultiDeviceTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_FALSE(devices_.empty());
+    ::unsetenv(kInjectFaultEnv);
+    options_.faults = FaultPolicy();
+    options_.granularity = 16;
+    options_.first_tile_items = 32;
+    options_.max_tile_items = 64;  // several tiles on the 480 camera / 192 projector pixels
+  }
+
+  transport::CompressedTransport reference_transport() {
+    const auto linear = testing::linearize(capture_.frames);
+    auto accumulator =
+        transport::make_reference_accumulator(testing::setup_for(linear, capture_.scene.projector_size, 3, 4));
+    return testing::feed_all(*accumulator, capture_.sequence, linear);
+  }
+
+  Capture capture_ = tiny_capture();
+  cl::ProgramCache programs_;
+  std::vector<cl::DeviceContext> devices_ = cl::open_devices("");
+  Options options_;
+};
+
+TEST_F(MultiDeviceTest, PoclExposesTwoDevicesWhenAsked) {
+  const char* pocl = std::getenv("POCL_DEVICES");
+  if (pocl == nullptr || std::string(pocl) != "pthread pthread") GTEST_SKIP() << "POCL_DEVICES is not two pthread";
+  std::size_t pocl_devices = 0;
+  for (const auto& device : devices_) pocl_devices += device.info().platform_name.find("Portable") == 0 ? 1 : 0;
+  EXPECT_EQ(pocl_devices, 2u);
+}
+
+TEST_F(MultiDeviceTest, PrimalAndDualEqualTheSingleDeviceProducts) {
+  const auto t = reference_transport();
+  const auto transposed = transport::transpose(t);
+  std::mt19937 random(5);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  std::vector<float> light_p(t.projector_pixels());
+  std::vector<float> light_c(t.camera_pixels());
+  for (auto& value : light_p) value = uniform(random);
+  for (auto& value : light_c) value = uniform(random);
+  for (const auto entry : {KernelEntry::kNdRange, KernelEntry::kSingleWorkItem}) {
+    SCOPED_TRACE(entry == KernelEntry::kNdRange ? "ndrange" : "single");
+    const auto primal = primal_on_devices(devices_, programs_, entry, t, light_p, options_);
+    const auto dual = dual_on_devices(devices_, programs_, entry, transposed, light_c, options_);
+    expect_identical(primal.image, transport::primal_opencl(devices_[0], programs_, entry, t, light_p), "primal");
+    expect_identical(dual.image, transport::dual_opencl(devices_[0], programs_, entry, transposed, light_c), "dual");
+    EXPECT_EQ(primal.report.items, t.camera_pixels());
+    EXPECT_EQ(dual.report.stage, "dual");
+  }
+}
+
+TEST_F(MultiDeviceTest, DualSurvivesAFailingDevice) {
+  if (devices_.size() < 2) GTEST_SKIP() << kNeedTwoDevices;
+  const auto t = reference_transport();
+  const auto transposed = transport::transpose(t);
+  const std::vector<float> light_c(t.camera_pixels(), 1.0f);
+  // Kernels built beforehand and one-pixel tiles (192 of them, each a kernel launch and a read): both devices start
+  // at once and device 0 gets a first tile long before device 1 could have taken them all, even on a loaded machine.
+  for (auto& device : devices_) programs_.get(device, "transport/spmv.cl");
+  options_.granularity = 1;
+  options_.first_tile_items = 1;
+  options_.max_tile_items = 1;
+  options_.faults = FaultPolicy::parse("0:1");
+  const auto dual = dual_on_devices(devices_, programs_, KernelEntry::kNdRange, transposed, light_c, options_);
+  expect_identical(dual.image,
+                   transport::dual_opencl(devices_[0], programs_, KernelEntry::kNdRange, transposed, light_c), "dual");
+  ASSERT_EQ(dual.report.failures.size(), 1u);
+  EXPECT_TRUE(dual.report.devices[0].failed);
+}
+
+class TransportOnDevicesTest : public MultiDeviceTest {
+ protected:
+  void SetUp() override {
+    MultiDeviceTest::SetUp();
+    testing::write_capture(dir_.path(), capture_.scene, capture_.sequence, 3, capture_.frames);
+    setup_.entries_per_pixel = 4;
+  }
+
+  transport::TransportRun on_devices() {
+    return transport::compute_transport_on_devices(dir_.path(), capture::read_manifest(dir_.path()), setup_, devices_,
+                                                   programs_, KernelEntry::kNdRange);
+  }
+  transport::CompressedTransport on_first_device() {
+    return transport::compute_transport(dir_.path(), capture::read_manifest(dir_.path()), setup_,
+                                        [&](const transport::TransportSetup& s) {
+                                          return make_device_accumulator(s, devices_[0], programs_,
+                                                                         KernelEntry::kNdRange);
+                                        })
+        .transport;
+  }
+
+  testing::TempDir dir_{"sched_transport"};
+  transport::TransportSetup setup_;
+};
+
+TEST_F(TransportOnDevicesTest, EqualsTheSingleDeviceTransport) {
+  const auto run = on_devices();
+  expect_identical(run.transport, on_first_device());
+  ASSERT_FALSE(run.schedule.empty());
+  EXPECT_EQ(run.schedule.front().stage, "decode");
+  for (const auto& stage : run.schedule) {
+    std::size_t rows_done = 0;
+    for (const auto& device : stage.devices) rows_done += device.items;
+    EXPECT_EQ(rows_done, stage.items);
+    EXPECT_TRUE(stage.failures.empty());
+  }
+}
+
+TEST_F(TransportOnDevicesTest, FailedDeviceBlocksAreReplayedElsewhere) {
+  if (devices_.size() < 2) GTEST_SKIP() << kNeedTwoDevices;
+  const InjectedFaults faults("1:12");  // after both Gray axes have started, so the replay has frames to re-read
+  const auto run = on_devices();
+  expect_identical(run.transport, on_first_device());
+  std::size_t failures = 0;
+  std::size_t replayed = 0;
+  for (const auto& stage : run.schedule) {
+    failures += stage.failures.size();
+    replayed += stage.devices[0].replayed_items;
+  }
+  EXPECT_EQ(failures, 1u);
+  EXPECT_GT(replayed, 0u);
+}
+
+TEST_F(TransportOnDevicesTest, EveryDeviceFailingIsAClearOpenClError) {
+  const InjectedFaults faults("*:2");
+  EXPECT_THROW(on_devices(), AllDevicesFailed);
+}
+
+}  // namespace
+}  // namespace rfrecon::sched

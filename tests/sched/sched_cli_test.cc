@@ -1,0 +1,102 @@
+// The commands that run kernels use every selected device and report per-stage, per-device shares in --summary;
+// failover through RFRECON_INJECT_FAULT; every device failing exits with the OpenCL code (5).
+#include <cstdlib>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "host/capture/protocol.h"
+#include "host/cl/device_selection.h"
+#include "host/cli/exit_codes.h"
+#include "host/sched/fault.h"
+#include "tests/common/run_cli.h"
+#include "tests/transport/synthetic_capture.h"
+
+namespace rfrecon::sched {
+namespace {
+
+namespace testing = transport::testing;
+using rfrecon::testing::run_cli;
+
+class SchedCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ::unsetenv(kInjectFaultEnv);
+    testing::SceneOptions options;
+    options.camera_size = {24, 20};
+    options.projector_size = {16, 12};
+    const auto scene = testing::make_plane_scene(options);
+    const auto sequence = capture::make_protocol({options.projector_size, 3});
+    testing::write_capture(capture_, scene, sequence, 3, testing::render_frames(scene, sequence, 3, 1.0, 7));
+  }
+  void TearDown() override { ::unsetenv(kInjectFaultEnv); }
+
+  std::string transport_args() const {
+    return "transport " + capture_.string() + " -o " + (dir_.path() / "T.h5").string() + " --summary " +
+           (dir_.path() / "summary.json").string();
+  }
+  nlohmann::json summary() const {
+    std::ifstream file(dir_.path() / "summary.json");
+    return nlohmann::json::parse(file);
+  }
+
+  testing::TempDir dir_{"sched_cli"};
+  std::filesystem::path capture_ = dir_.path() / "capture";
+  std::size_t devices_ = cl::open_devices("").size();
+};
+
+TEST_F(SchedCliTest, TransportSummaryHasPerStageDeviceShares) {
+  const auto result = run_cli(transport_args());
+  ASSERT_EQ(result.exit_code, cli::kExitOk) << result.output;
+  EXPECT_NE(result.output.find("share"), std::string::npos) << result.output;  // the table at the end
+  const auto json = summary();
+  ASSERT_TRUE(json.contains("schedule"));
+  std::vector<std::string> stages;
+  for (const auto& stage : json["schedule"]) {
+    stages.push_back(stage["stage"]);
+    ASSERT_EQ(stage["devices"].size(), devices_);
+    double shares = 0.0;
+    for (const auto& device : stage["devices"]) shares += device["share"].get<double>();
+    EXPECT_NEAR(shares, 1.0, 1e-9);  // shares are fractions of the stage's items
+  }
+  EXPECT_EQ(stages, (std::vector<std::string>{"decode", "compress", "finalize"}));
+  EXPECT_TRUE(json["stage_seconds"].contains("decode"));
+}
+
+TEST_F(SchedCliTest, TransportCompletesWhenADeviceFailsAndReportsIt) {
+  if (devices_ < 2) GTEST_SKIP() << "needs two OpenCL devices (POCL_DEVICES=\"pthread pthread\")";
+  ::setenv(kInjectFaultEnv, "0:3", 1);
+  const auto result = run_cli(transport_args());
+  ASSERT_EQ(result.exit_code, cli::kExitOk) << result.output;
+  EXPECT_NE(result.output.find("failed"), std::string::npos) << result.output;  // the warning
+  std::size_t failures = 0;
+  const auto json = summary();
+  for (const auto& stage : json["schedule"]) failures += stage["failures"].size();
+  EXPECT_EQ(failures, 1u);
+}
+
+TEST_F(SchedCliTest, EveryDeviceFailingExitsWithTheOpenClCodeAndWritesNothing) {
+  ::setenv(kInjectFaultEnv, "*:1", 1);
+  const auto result = run_cli(transport_args());
+  EXPECT_EQ(result.exit_code, cli::kExitOpenCl) << result.output;
+  EXPECT_NE(result.output.find("every selected device failed"), std::string::npos) << result.output;
+  EXPECT_FALSE(std::filesystem::exists(dir_.path() / "T.h5"));
+  EXPECT_FALSE(std::filesystem::exists(dir_.path() / "summary.json"));
+}
+
+TEST_F(SchedCliTest, DualSummaryHasTheDualStage) {
+  ASSERT_EQ(run_cli(transport_args()).exit_code, cli::kExitOk);
+  const auto result =
+      run_cli("dual " + (dir_.path() / "T.h5").string() + " -o " + (dir_.path() / "dual.tiff").string() +
+              " --summary " + (dir_.path() / "dual.json").string());
+  ASSERT_EQ(result.exit_code, cli::kExitOk) << result.output;
+  std::ifstream file(dir_.path() / "dual.json");
+  const auto json = nlohmann::json::parse(file);
+  ASSERT_EQ(json["schedule"].size(), 1u);
+  EXPECT_EQ(json["schedule"][0]["stage"], "dual");
+  EXPECT_EQ(json["schedule"][0]["items"], 16 * 12);  // every projector pixel once
+}
+
+}  // namespace
+}  // namespace rfrecon::sched
