@@ -47,7 +47,7 @@ std::map<Method, double> rms_percent(const std::string& scene, const fs::path& r
 TEST(DepthAccuracy, CubeWithEstimatedCalibration) {
   // Measured 0.33 % (triangulate), 0.35 % (integrate), 0.25 % (fused): fused better than both. The fused error is
   // almost all a bias of the estimated calibration (0.146 mm of its 0.151 mm RMS; with the true rig it is 0.076 %),
-  // which changes from one calibration to the next (0.13 % to 0.25 % seen): limits 0.3 % and 0.5 %
+  // which changes from one calibration to the next: limits 0.3 % and 0.5 %
   // (docs/accuracy.md).
   const auto rms = rms_percent("cube-anisotropic", kEstimatedRig);
   EXPECT_LE(rms.at(Method::kFused), 0.3);

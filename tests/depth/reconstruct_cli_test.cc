@@ -1,7 +1,6 @@
 // `rfrecon reconstruct` on bad input: each case ends with its documented exit code and a message naming the
 // problem, and leaves no output directory behind.
 #include <filesystem>
-#include <fstream>
 
 #include <gtest/gtest.h>
 
@@ -11,6 +10,7 @@
 #include "sim/truth_io.h"
 #include "tests/common/run_cli.h"
 #include "tests/sim/test_scenes.h"
+#include "tests/transport/synthetic_capture.h"
 
 namespace rfrecon {
 namespace {
@@ -20,9 +20,6 @@ namespace fs = std::filesystem;
 class ReconstructCliTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("rfrecon_reconstruct_cli_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     // An 80x60 T in which no camera pixel has a correspondence, and the true rig of an 80x60 rig.
     transport::TransportSetup setup;
     setup.camera_size = setup.projector_size = cv::Size(80, 60);
@@ -31,14 +28,13 @@ class ReconstructCliTest : public ::testing::Test {
         sim::testing::small_rig({sim::testing::tilted_plane({{"brdf", "lambert"}, {"diffuse", 0.5}})})));
     calib::write_rig(small_rig_, dir_ / "rig.yaml");
   }
-  void TearDown() override { fs::remove_all(dir_); }
-
   testing::CliResult reconstruct(const fs::path& rig) {
     return testing::run_cli("reconstruct " + (dir_ / "T.h5").string() + " --calib " + rig.string() + " -o " +
                             (dir_ / "out").string());
   }
 
-  fs::path dir_;
+  transport::testing::TempDir temp_{"reconstruct_cli"};
+  const fs::path& dir_ = temp_.path();
   calib::StereoRig small_rig_;
 };
 
