@@ -17,8 +17,8 @@
 #include "host/capture/manifest.h"
 #include "host/capture/protocol.h"
 #include "host/cl/device_selection.h"
-#include "host/sched/spmv_on_devices.h"
-#include "host/transport/pipeline.h"
+#include "host/transport/compute_transport.h"
+#include "host/transport/spmv_on_devices.h"
 
 namespace {
 
@@ -107,7 +107,7 @@ void BM_DualScheduled(benchmark::State& state, bool tiny, std::size_t count) {
   sched::RunReport report;
   for (auto _ : state) {
     auto run =
-        sched::dual_on_devices(selected, programs(), rfrecon::cl::KernelEntry::kNdRange, p.transposed, p.light_c);
+        transport::dual_on_devices(selected, programs(), rfrecon::cl::KernelEntry::kNdRange, p.transposed, p.light_c);
     report = std::move(run.report);
   }
   set_shares(state, report);
@@ -127,8 +127,9 @@ void BM_PrimalScheduled(benchmark::State& state, std::size_t count) {
   auto selected = devices(count);
   sched::RunReport report;
   for (auto _ : state) {
-    report = sched::primal_on_devices(selected, programs(), rfrecon::cl::KernelEntry::kNdRange, p.transport, p.light_p)
-                 .report;
+    report =
+        transport::primal_on_devices(selected, programs(), rfrecon::cl::KernelEntry::kNdRange, p.transport, p.light_p)
+            .report;
   }
   set_shares(state, report);
 }

@@ -7,11 +7,13 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "host/core/percentile.h"
+
 namespace rfrecon::calib {
 
 std::vector<cv::Point3f> board_object_points(const BoardSpec& board) {
   std::vector<cv::Point3f> points;
-  points.reserve(static_cast<std::size_t>(board.cols * board.rows));
+  points.reserve(static_cast<std::size_t>(board.cols) * static_cast<std::size_t>(board.rows));
   for (int row = 0; row < board.rows; ++row) {
     for (int col = 0; col < board.cols; ++col) {
       points.emplace_back(static_cast<float>(col * board.square_size), static_cast<float>(row * board.square_size),
@@ -31,17 +33,8 @@ cv::Mat to_detection_image(const cv::Mat& image) {
     image.convertTo(converted, CV_32F);
     cv::cvtColor(converted, gray, cv::COLOR_BGR2GRAY);
   }
-  std::vector<float> values;
-  values.reserve(gray.total());
-  for (auto it = gray.begin<float>(); it != gray.end<float>(); ++it) {
-    if (std::isfinite(*it)) values.push_back(*it);
-  }
-  float high = 1.0f;
-  if (!values.empty()) {
-    const auto rank = static_cast<std::size_t>(0.995 * static_cast<double>(values.size() - 1));
-    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank), values.end());
-    high = std::max(values[rank], 1e-12f);
-  }
+  const float percentile = finite_percentile(gray, 0.995);
+  const float high = std::isnan(percentile) ? 1.0f : std::max(percentile, 1e-12f);
   cv::patchNaNs(gray, 0.0);
   cv::Mat out;
   gray.convertTo(out, CV_8U, 255.0 / high);

@@ -6,8 +6,8 @@
 #include <opencv2/calib3d.hpp>
 
 #include "calib/board_detection.h"
-#include "host/common/atomic_file.h"
-#include "host/common/errors.h"
+#include "host/core/atomic_file.h"
+#include "host/core/errors.h"
 
 namespace rfrecon::calib {
 

@@ -5,8 +5,8 @@
 
 #include <opencv2/calib3d.hpp>
 
-#include "host/common/atomic_file.h"
-#include "host/common/errors.h"
+#include "host/core/atomic_file.h"
+#include "host/core/errors.h"
 
 namespace rfrecon::calib {
 

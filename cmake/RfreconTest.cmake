@@ -6,7 +6,7 @@ include(GoogleTest)
 function(rfrecon_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;LABELS;FIXTURES" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
-  target_link_libraries(${name} PRIVATE rfrecon GTest::gtest GTest::gtest_main GTest::gmock)
+  target_link_libraries(${name} PRIVATE rfrecon::rfrecon GTest::gtest GTest::gtest_main GTest::gmock)
   target_compile_options(${name} PRIVATE -Wall -Wextra)
   set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
   target_compile_definitions(${name} PRIVATE RFRECON_FIXTURES_DIR="${CMAKE_BINARY_DIR}/fixtures"

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "host/common/errors.h"
+#include "host/core/errors.h"
 
 namespace rfrecon::sim {
 

@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "host/common/errors.h"
+#include "host/core/errors.h"
 
 namespace rfrecon::sim {
 

@@ -9,7 +9,8 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "host/common/errors.h"
+#include "host/capture/pattern_files.h"
+#include "host/core/errors.h"
 
 namespace rfrecon::sim {
 
@@ -63,16 +64,7 @@ capture::CaptureManifest make_manifest(const CaptureSettings& s, cv::Size camera
   const auto protocol = capture::make_protocol({projector_size, s.dot_spacing});
   for (std::size_t i = 0; i < protocol.size(); ++i) {
     const auto& p = protocol[i];
-    char name[96];
-    if (p.kind == capture::PatternKind::kGrayColumn || p.kind == capture::PatternKind::kGrayRow) {
-      std::snprintf(name, sizeof name, "%03zu_%s_b%02d%s", i, capture::to_string(p.kind), p.bit,
-                    p.inverse ? "_inv" : "");
-    } else if (p.kind == capture::PatternKind::kDot) {
-      std::snprintf(name, sizeof name, "%03zu_dot_%02d_%02d", i, p.dot_offset_x, p.dot_offset_y);
-    } else {
-      std::snprintf(name, sizeof name, "%03zu_%s", i, capture::to_string(p.kind));
-    }
-    manifest.frames.push_back({p, std::string(name) + (s.format == "tiff" ? ".tiff" : ".png")});
+    manifest.frames.push_back({p, capture::pattern_file_name(i, p, s.format == "tiff" ? ".tiff" : ".png")});
   }
   return manifest;
 }

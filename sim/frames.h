@@ -8,7 +8,7 @@
 #include <opencv2/core.hpp>
 
 #include "host/capture/manifest.h"
-#include "host/common/progress.h"
+#include "host/core/progress.h"
 #include "sim/render.h"
 
 namespace rfrecon::sim {

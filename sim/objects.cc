@@ -10,7 +10,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-#include "host/common/errors.h"
+#include "host/core/errors.h"
 
 namespace rfrecon::sim {
 
@@ -280,6 +280,27 @@ std::shared_ptr<const TriangleMesh> load_mesh(const std::string& file, double sc
   if (mesh->triangles.empty()) throw InputError(field + ": mesh '" + file + "' holds no triangles");
   build_bvh(*mesh);
   return mesh;
+}
+
+std::pair<double, std::string> characteristic_size_mm(const Object& object) {
+  const auto& s = object.size;
+  switch (object.kind) {
+    case ShapeKind::kBox:
+      return {*std::max_element(s.begin(), s.end()), "longest edge"};
+    case ShapeKind::kSphere:
+      return {2.0 * s[0], "diameter"};
+    case ShapeKind::kCylinder:
+      return {std::max(2.0 * s[0], s[1]), "larger of diameter and length"};
+    case ShapeKind::kPlane:
+      if (s[0] <= 0.0) return {0.0, "none (infinite plane)"};
+      return {std::max(s[0], s[1]), "longest side"};
+    case ShapeKind::kMesh: {
+      Eigen::AlignedBox3d bounds;
+      for (const auto& vertex : object.mesh->vertices) bounds.extend(vertex);
+      return {bounds.sizes().maxCoeff(), "longest bounding-box edge"};
+    }
+  }
+  throw std::logic_error("characteristic_size_mm: unknown shape");
 }
 
 }  // namespace rfrecon::sim

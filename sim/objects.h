@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -80,5 +81,10 @@ std::optional<Hit> intersect(const Object& object, const Ray& ray, double min_di
 // Loads a PLY/OBJ/... triangle mesh with assimp (all meshes of the file, triangulated, vertices scaled by `scale`).
 // Throws InputError naming `field` and the file when it cannot be read or holds no triangles.
 std::shared_ptr<const TriangleMesh> load_mesh(const std::string& file, double scale, const std::string& field);
+
+// Characteristic size of an object in mm and how it is measured: box: longest edge; sphere: diameter (2 r);
+// cylinder: the larger of diameter (2 r) and length; finite plane: longest side; mesh: longest edge of its
+// axis-aligned bounding box in the object frame (scaled to mm); an infinite plane: 0, "none (infinite plane)".
+std::pair<double, std::string> characteristic_size_mm(const Object& object);
 
 }  // namespace rfrecon::sim

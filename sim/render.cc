@@ -167,7 +167,7 @@ class RowRenderer {
       : scene_(scene), options_(options), tracer_(scene), n_(options.supersample) {}
 
   // Renders camera row y into rows[y * W ...] and the ground truth of that row.
-  void render_row(int y, std::vector<Row>& rows, GroundTruth& truth) const {
+  void render_row(int y, std::vector<Row>& rows, truth::TruthMaps& truth) const {
     const cv::Size camera = scene_.camera.size;
     const int per_pixel = n_ * n_ + 1;  // sub-pixel samples, then the pixel centre
     std::vector<cv::Point2d> pixels;
@@ -244,7 +244,7 @@ class RowRenderer {
     }
   }
 
-  void record_truth(const Eigen::Vector2d& xy, int x, int y, GroundTruth& truth) const {
+  void record_truth(const Eigen::Vector2d& xy, int x, int y, truth::TruthMaps& truth) const {
     const Eigen::Vector3d direction = Eigen::Vector3d(xy.x(), xy.y(), 1.0).normalized();
     const auto hit = tracer_.nearest({Eigen::Vector3d::Zero(), direction}, 0.0, INFINITY);
     if (!hit) return;
@@ -272,7 +272,7 @@ class RowRenderer {
   int n_;
 };
 
-GroundTruth empty_truth(cv::Size size) {
+truth::TruthMaps empty_truth(cv::Size size) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   return {cv::Mat(size, CV_32F, cv::Scalar(nan)),
           cv::Mat(size, CV_32FC3, cv::Scalar::all(nan)),

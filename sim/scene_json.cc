@@ -1,9 +1,9 @@
 // Scene JSON: parsing with validation errors that name the field path, and serialisation of the resolved scene.
 #include <cmath>
-#include <fstream>
 #include <set>
 
-#include "host/common/errors.h"
+#include "host/core/errors.h"
+#include "host/core/json_file.h"
 #include "sim/scene.h"
 
 namespace rfrecon::sim {
@@ -50,7 +50,7 @@ class Reader {
 
   std::vector<double> numbers(const json& object, const std::string& path, const std::string& key,
                               std::size_t count) const {
-    const auto values = get<std::vector<double>>(object, path, key);
+    auto values = get<std::vector<double>>(object, path, key);
     if (values.size() != count) fail(join(path, key), "must hold " + std::to_string(count) + " numbers");
     for (const double v : values) {
       if (!std::isfinite(v)) fail(join(path, key), "must be finite");
@@ -372,15 +372,7 @@ Scene scene_from_json(const json& root, const std::string& source, const fs::pat
 }
 
 Scene load_scene_file(const fs::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError("cannot read scene file " + file.string());
-  json root;
-  try {
-    root = json::parse(in);
-  } catch (const json::parse_error& error) {
-    throw InputError(file.string() + ": not valid JSON (" + error.what() + ")");
-  }
-  return scene_from_json(root, file.string(), file.parent_path());
+  return scene_from_json(read_json_file(file), file.string(), file.parent_path());
 }
 
 json scene_to_json(const Scene& scene) {

@@ -6,9 +6,9 @@
 
 #include <spdlog/spdlog.h>
 
-#include "host/common/atomic_file.h"
-#include "host/common/errors.h"
-#include "host/common/progress.h"
+#include "host/core/atomic_file.h"
+#include "host/core/errors.h"
+#include "host/core/progress.h"
 #include "sim/frames.h"
 #include "sim/render.h"
 #include "sim/truth_io.h"
@@ -67,7 +67,7 @@ void render_view(const Scene& scene, int threads, const std::string& label, cons
   Progress progress(label + ": frames", frames, "frames");
   write_capture(transport.T, scene.capture, scene.camera.size, scene.projector.size, scene.render.seed, threads,
                 capture_dir, &progress);
-  write_ground_truth(transport.truth, truth_dir);
+  truth::write_truth(truth_dir, transport.truth, truth_objects(scene));
 }
 }  // namespace
 

@@ -1,10 +1,7 @@
-// Ground-truth files: OpenCV images for the maps, binary PLY for the points, the rig YAML for the calibration.
+// The true rig and the objects of a scene, from its devices and shapes.
 #include "sim/truth_io.h"
 
 #include <opencv2/core/eigen.hpp>
-
-#include "host/common/image_file.h"
-#include "host/common/ply.h"
 
 namespace rfrecon::sim {
 
@@ -33,21 +30,14 @@ calib::StereoRig true_rig(const Scene& scene) {
   return rig;
 }
 
-void write_points_ply(const GroundTruth& truth, const fs::path& file) {
-  write_point_cloud_ply(file, "rfrecon synthetic ground truth, camera frame, mm", truth.points_mm, truth.normals);
-}
-
-void write_ground_truth(const GroundTruth& truth, const fs::path& dir) {
-  write_image(dir / "depth.tiff", truth.depth_mm);
-  write_image(dir / "normals.tiff", truth.normals);
-  write_image(dir / "visibility.png", truth.visible);
-  write_image(dir / "shadow.png", truth.shadow);
-  // cv::imwrite cannot write 2-channel images: the (x, y) pair is padded with a zero third channel.
-  cv::Mat padded;
-  cv::merge(std::vector<cv::Mat>{truth.correspondence, cv::Mat::zeros(truth.correspondence.size(), CV_32FC1)}, padded);
-  write_image(dir / "correspondences.tiff", padded);
-  write_image(dir / "object_id.png", truth.object_id);
-  write_points_ply(truth, dir / "points.ply");
+std::vector<truth::TruthObject> truth_objects(const Scene& scene) {
+  std::vector<truth::TruthObject> objects;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const Object& object = scene.objects[i];
+    const auto [size_mm, rule] = characteristic_size_mm(object);
+    objects.push_back({static_cast<int>(i) + 1, object.name, to_string(object.kind), size_mm, rule});
+  }
+  return objects;
 }
 
 }  // namespace rfrecon::sim

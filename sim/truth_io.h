@@ -1,21 +1,18 @@
-// Ground-truth outputs of the synthetic rig: the true calibration and the per-pixel maps, as files.
+// What the synthetic rig knows as truth about a scene: its true rig and its objects as the truth files describe them.
 #pragma once
 
-#include <filesystem>
+#include <vector>
 
 #include "calib/rig.h"
-#include "sim/render.h"
+#include "host/truth/ground_truth.h"
+#include "sim/scene.h"
 
 namespace rfrecon::sim {
 
 // The scene's true rig (rms 0, no per-view errors; board from the first checkerboard object, if any).
 calib::StereoRig true_rig(const Scene& scene);
 
-// Writes depth.tiff, normals.tiff, visibility.png, shadow.png, correspondences.tiff (x, y, 0: 3 channels, as
-// cv::imwrite has no 2-channel images), object_id.png and points.ply into `dir` (which must exist).
-void write_ground_truth(const GroundTruth& truth, const std::filesystem::path& dir);
-
-// Binary little-endian PLY of the visible surface points (x, y, z, nx, ny, nz as float; camera frame, mm).
-void write_points_ply(const GroundTruth& truth, const std::filesystem::path& file);
+// The scene's objects, labelled 1, 2, ... in order, with their characteristic sizes (characteristic_size_mm).
+std::vector<truth::TruthObject> truth_objects(const Scene& scene);
 
 }  // namespace rfrecon::sim

@@ -9,8 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "host/common/atomic_file.h"
-#include "host/common/errors.h"
+#include "host/core/atomic_file.h"
+#include "host/core/errors.h"
 
 namespace rfrecon::capture {
 
@@ -142,13 +142,14 @@ void validate(const CaptureManifest& manifest, const fs::path& file) {
   if (plain_count[PatternKind::kWhite] != 1 || plain_count[PatternKind::kBlack] != 1) {
     fail("needs exactly one white and one black frame");
   }
-  if (gray_seen.size() != static_cast<std::size_t>(2 * (column_bits + row_bits))) {
+  if (gray_seen.size() != 2 * static_cast<std::size_t>(column_bits + row_bits)) {
     fail("incomplete Gray code: " + std::to_string(gray_seen.size()) + " of " +
          std::to_string(2 * (column_bits + row_bits)) + " frames for a " +
          std::to_string(manifest.projector_size.width) + "x" + std::to_string(manifest.projector_size.height) +
          " projector");
   }
-  if (dots_seen.size() != static_cast<std::size_t>(manifest.dot_spacing * manifest.dot_spacing)) {
+  if (dots_seen.size() !=
+      static_cast<std::size_t>(manifest.dot_spacing) * static_cast<std::size_t>(manifest.dot_spacing)) {
     fail("incomplete dot grid: " + std::to_string(dots_seen.size()) + " of " +
          std::to_string(manifest.dot_spacing * manifest.dot_spacing) + " frames");
   }

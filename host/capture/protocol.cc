@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "host/common/errors.h"
+#include "host/core/errors.h"
 
 namespace rfrecon::capture {
 

@@ -9,7 +9,7 @@
 
 #include "host/cl/error.h"
 #include "host/cl/kernel_sources.h"
-#include "host/common/atomic_file.h"
+#include "host/core/atomic_file.h"
 
 namespace rfrecon::cl {
 
@@ -35,23 +35,8 @@ void build_or_throw(::cl::Program& program, DeviceContext& device, std::string_v
 
 std::string device_preamble(const DeviceInfo& info) {
   std::string text = "// rfrecon device preamble for " + describe(info) + "\n";
-  switch (info.kind) {
-    case DeviceKind::kCpu:
-      text += "#define RF_DEVICE_CPU 1\n";
-      break;
-    case DeviceKind::kGpu:
-      text += "#define RF_DEVICE_GPU 1\n";
-      break;
-    case DeviceKind::kAccelerator:
-      text += "#define RF_DEVICE_ACCELERATOR 1\n";
-      break;
-    case DeviceKind::kOther:
-      break;
-  }
   if (info.intel_fpga) text += "#define RF_TARGET_INTEL_FPGA 1\n";
   if (info.xilinx_fpga) text += "#define RF_TARGET_XILINX_FPGA 1\n";
-  if (info.fp64) text += "#define RF_HAS_FP64 1\n";
-  if (info.fp16) text += "#define RF_HAS_FP16 1\n";
   text += "#line 1\n";
   return text;
 }
@@ -95,9 +80,10 @@ bool ProgramCache::uses_binary(const DeviceInfo& info) const {
 ::cl::Program ProgramCache::get(DeviceContext& device, std::string_view kernel_path, std::string_view options) {
   if (uses_binary(device.info())) {
     if (binary_dir_.empty()) {
-      throw std::runtime_error(describe(device.info()) + " has no OpenCL compiler: set " + kBinaryDirEnv +
-                               " to the directory holding " + binary_file_name(kernel_path, device.info()) +
-                               " (see docs/fpga.md)");
+      throw std::runtime_error(describe(device.info()) + " has no OpenCL compiler: build " +
+                               binary_file_name(kernel_path, device.info()) + " from kernels/" +
+                               std::string(kernel_path) + " with the vendor's offline compiler (aoc, v++) and set " +
+                               kBinaryDirEnv + " to the directory holding it");
     }
     return build_binary(device, binary_dir_ / binary_file_name(kernel_path, device.info()), options);
   }

@@ -19,7 +19,8 @@ namespace rfrecon::cl {
 // Directory of precompiled kernel binaries (FPGA bitstreams); read when a ProgramCache is made without one.
 inline constexpr const char* kBinaryDirEnv = "RFRECON_KERNEL_BINARY_DIR";
 
-// The `#define` lines prepended to every source built for this device (RF_DEVICE_CPU, RF_HAS_FP64, ...).
+// The lines prepended to every source built for this device: a comment naming it, RF_TARGET_INTEL_FPGA or
+// RF_TARGET_XILINX_FPGA on those boards (kernels/common/target.h), then `#line 1`.
 std::string device_preamble(const DeviceInfo& info);
 
 // "selfcheck/axpy.cl" on an Intel FPGA -> "selfcheck_axpy.aocx"; ".xclbin" on Xilinx; ".bin" elsewhere.

@@ -2,7 +2,6 @@
 #include "host/cli/capture_options.h"
 
 #include "host/cli/size_option.h"
-#include "host/transport/pipeline.h"
 
 namespace rfrecon::cli {
 
@@ -16,9 +15,8 @@ void add_capture_options(CLI::App* command, CaptureOptions& options) {
   command->add_option("--projector", options.projector, "Projector resolution WxH (needed by opencv-graycode)");
 }
 
-capture::CaptureManifest open_capture(const std::filesystem::path& capture_dir, const CaptureOptions& options) {
-  const cv::Size projector = options.projector.empty() ? cv::Size() : parse_size(options.projector, "--projector");
-  return transport::open_capture(capture_dir, options.layout, projector);
+transport::CaptureSource capture_source(const CaptureOptions& options) {
+  return {options.layout, options.projector.empty() ? cv::Size() : parse_size(options.projector, "--projector")};
 }
 
 }  // namespace rfrecon::cli

@@ -1,12 +1,11 @@
 // The options every command reading a capture directory takes: --layout and --projector.
 #pragma once
 
-#include <filesystem>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
-#include "host/capture/manifest.h"
+#include "host/transport/capture_views.h"
 
 namespace rfrecon::cli {
 
@@ -18,7 +17,7 @@ struct CaptureOptions {
 // Adds --layout and --projector to `command`.
 void add_capture_options(CLI::App* command, CaptureOptions& options);
 
-// The capture's manifest for these options (transport::open_capture).
-capture::CaptureManifest open_capture(const std::filesystem::path& capture_dir, const CaptureOptions& options);
+// The layout these options name; throws InputError for a malformed --projector.
+transport::CaptureSource capture_source(const CaptureOptions& options);
 
 }  // namespace rfrecon::cli

@@ -1,4 +1,5 @@
 // `rfrecon devices`: lists the OpenCL devices and how rfrecon would load programs on each.
+#include <cstdint>
 #include <iostream>
 
 #include <nlohmann/json.hpp>
@@ -10,6 +11,8 @@
 namespace rfrecon::cli {
 
 namespace {
+constexpr std::uint64_t kMiB = std::uint64_t{1} << 20;
+
 struct DevicesOptions {
   bool json = false;
   std::string selection;
@@ -42,8 +45,8 @@ void run_devices(const DevicesOptions& options) {
               << "    platform:       " << info.platform_name << " (" << info.platform_vendor << ")\n"
               << "    type:           " << cl::to_string(info.kind) << "\n"
               << "    compute units:  " << info.compute_units << "\n"
-              << "    global memory:  " << info.global_mem_bytes / (1024 * 1024) << " MiB (max allocation "
-              << info.max_alloc_bytes / (1024 * 1024) << " MiB)\n"
+              << "    global memory:  " << info.global_mem_bytes / kMiB << " MiB (max allocation "
+              << info.max_alloc_bytes / kMiB << " MiB)\n"
               << "    local memory:   " << info.local_mem_bytes / 1024 << " KiB\n"
               << "    OpenCL C:       " << info.opencl_c_version << "\n"
               << "    fp64 / fp16:    " << (info.fp64 ? "yes" : "no") << " / " << (info.fp16 ? "yes" : "no") << "\n"

@@ -4,36 +4,21 @@
 #include <spdlog/spdlog.h>
 
 #include "host/cli/commands.h"
-#include "host/reconstruct/evaluation.h"
-#include "host/reconstruct/outputs.h"
+#include "host/evaluation/evaluate_directory.h"
 
 namespace rfrecon::cli {
 
 namespace {
-struct EvaluateOptions {
-  std::filesystem::path reconstruction_dir;
-  std::filesystem::path truth_dir;
-  std::string object;
-  std::filesystem::path report;     // default: reconstruction_dir / evaluation.json
-  std::filesystem::path error_map;  // default: reconstruction_dir / error_map.png
-};
-
-void run_evaluate(const EvaluateOptions& options) {
-  const auto truth = reconstruct::read_evaluation_truth(options.truth_dir, options.object);
-  const auto reconstruction = reconstruct::read_reconstruction(options.reconstruction_dir);
-  const auto evaluation =
-      reconstruct::evaluate(reconstruction, truth, (options.reconstruction_dir / "depth.tiff").string());
-  const auto report = options.report.empty() ? options.reconstruction_dir / "evaluation.json" : options.report;
-  const auto map = options.error_map.empty() ? options.reconstruction_dir / "error_map.png" : options.error_map;
-  reconstruct::write_evaluation(evaluation, report, map);
-  std::cout << reconstruct::evaluation_table(evaluation) << std::flush;
-  spdlog::info("evaluate: wrote {} and {} (|error| 0 to {:.4g} mm, 1 % of the object size)", report.string(),
-               map.string(), reconstruct::error_map_full_scale_mm(evaluation));
+void run_evaluate(const evaluation::EvaluationRequest& request) {
+  const auto run = evaluation::evaluate_directory(request);
+  std::cout << evaluation::evaluation_table(run.evaluation) << std::flush;
+  spdlog::info("evaluate: wrote {} and {} (|error| 0 to {:.4g} mm, 1 % of the object size)", run.report.string(),
+               run.error_map.string(), evaluation::error_map_full_scale_mm(run.evaluation));
 }
 }  // namespace
 
 void add_evaluate_command(CLI::App& app) {
-  auto options = std::make_shared<EvaluateOptions>();
+  auto options = std::make_shared<evaluation::EvaluationRequest>();
   auto* command = app.add_subcommand("evaluate", "Compare a reconstruction with the ground truth of `simulate`");
   command->add_option("reconstruction", options->reconstruction_dir, "Output directory of `rfrecon reconstruct`")
       ->required();

@@ -9,7 +9,7 @@
 #include "host/cl/error.h"
 #include "host/cli/commands.h"
 #include "host/cli/exit_codes.h"
-#include "host/common/errors.h"
+#include "host/core/errors.h"
 
 namespace rfrecon::cli {
 

@@ -1,48 +1,32 @@
 // `rfrecon reconstruct`: depth, normals, confidence and a point cloud from T.h5 and a calibrated rig.
 #include <cstdio>
 
-#include <spdlog/spdlog.h>
-
-#include "calib/rig.h"
 #include "host/cl/device_selection.h"
 #include "host/cli/commands.h"
-#include "host/depth/reconstruct.h"
-#include "host/reconstruct/outputs.h"
-#include "host/transport/transport_file.h"
+#include "host/pipeline/reconstruct_scan.h"
 
 namespace rfrecon::cli {
 
 namespace {
 struct ReconstructOptions {
-  std::filesystem::path transport;
-  std::filesystem::path rig;
-  std::filesystem::path out_dir;
+  pipeline::ReconstructRequest request;
   std::string method = "fused";
   std::string devices;
   std::string entry = "ndrange";
-  bool force = false;
-  depth::DepthOptions depth;
 };
 
 void run_reconstruct(ReconstructOptions options) {
-  options.depth.method = depth::parse_method(options.method);
-  options.depth.entry = options.entry == "single" ? cl::KernelEntry::kSingleWorkItem : cl::KernelEntry::kNdRange;
-  const auto transport = transport::read_transport(options.transport);
-  const auto rig = calib::read_rig(options.rig);
+  auto& request = options.request;
+  request.depth.method = depth::parse_method(options.method);
+  request.depth.entry = options.entry == "single" ? cl::KernelEntry::kSingleWorkItem : cl::KernelEntry::kNdRange;
   auto devices = cl::open_devices(options.devices);
   cl::ProgramCache programs;
-  spdlog::info("reconstruct: {} from {} with {} on {}", options.method, options.transport.string(),
-               options.rig.string(), cl::describe(devices.front().info()));
-  auto run = depth::reconstruct_depth(transport, rig, options.rig.string(), options.depth, devices, programs);
-  run.summary["transport_file"] = options.transport.string();
-  run.summary["calibration_file"] = options.rig.string();
-  reconstruct::write_reconstruction(run.maps, run.summary, options.out_dir, options.force);
-
+  const auto run = pipeline::reconstruct_scan(request, devices, programs);
+  const auto& summary = run.depth.summary;
   std::printf("reconstruct (%s): %d of %d camera pixels, wrote %s\nstage timings:\n", options.method.c_str(),
-              run.summary["reconstructed_pixels"].get<int>(), transport.setup.camera_size.area(),
-              options.out_dir.string().c_str());
+              summary["reconstructed_pixels"].get<int>(), run.camera_pixels, request.out_dir.string().c_str());
   double total = 0.0;
-  for (const auto& timing : run.summary["timings"]) {
+  for (const auto& timing : summary["timings"]) {
     std::printf("  %-24s %8.3f s\n", timing["stage"].get<std::string>().c_str(), timing["seconds"].get<double>());
     total += timing["seconds"].get<double>();
   }
@@ -53,18 +37,19 @@ void run_reconstruct(ReconstructOptions options) {
 void add_reconstruct_command(CLI::App& app) {
   auto options = std::make_shared<ReconstructOptions>();
   auto* command = app.add_subcommand("reconstruct", "Depth, normals and a point cloud from T.h5 and rig.yaml");
-  command->add_option("transport", options->transport, "Compressed light transport (T.h5)")->required();
-  command->add_option("--calib", options->rig, "Calibrated rig (rig.yaml from `rfrecon calibrate`)")->required();
-  command->add_option("-o,--out", options->out_dir, "Output directory (docs/formats.md)")->required();
+  command->add_option("transport", options->request.transport, "Compressed light transport (T.h5)")->required();
+  command->add_option("--calib", options->request.rig, "Calibrated rig (rig.yaml from `rfrecon calibrate`)")
+      ->required();
+  command->add_option("-o,--out", options->request.out_dir, "Output directory (docs/formats.md)")->required();
   command->add_option("--method", options->method, "triangulate, integrate (reciprocity ODE) or fused")
       ->check(CLI::IsMember({"triangulate", "integrate", "fused"}))
       ->capture_default_str();
-  command->add_flag("--force", options->force, "Replace an existing output directory");
+  command->add_flag("--force", options->request.force, "Replace an existing output directory");
   add_devices_option(command, options->devices);
   command->add_option("--entry", options->entry, "Kernel entry: ndrange or single (single work-item, FPGA)")
       ->check(CLI::IsMember({"ndrange", "single"}))
       ->capture_default_str();
-  auto& depth = options->depth;
+  auto& depth = options->request.depth;
   command
       ->add_option("--epipolar-tolerance", depth.rectification.epipolar_tolerance_px,
                    "Reject correspondences further than this from their rectified row (px)")

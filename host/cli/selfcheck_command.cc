@@ -1,14 +1,10 @@
 // `rfrecon selfcheck`: builds and runs the self-check kernel on each selected device against its C++ reference.
-#include <cmath>
 #include <iostream>
-#include <numeric>
-
-#include <spdlog/spdlog.h>
 
 #include "host/cl/device_selection.h"
 #include "host/cli/commands.h"
 #include "host/cli/exit_codes.h"
-#include "host/selfcheck/axpy.h"
+#include "host/selfcheck/selfcheck.h"
 
 namespace rfrecon::cli {
 
@@ -19,27 +15,14 @@ struct SelfcheckOptions {
 };
 
 void run_selfcheck(const SelfcheckOptions& options) {
-  std::vector<float> x(options.size);
-  std::vector<float> y(options.size);
-  for (std::size_t i = 0; i < options.size; ++i) {
-    x[i] = static_cast<float>(i % 1000) * 0.25f;
-    y[i] = 1.0f - static_cast<float>(i % 7);
-  }
-  const float a = 1.5f;
-  const auto expected = selfcheck::axpy_reference(a, x, y);
-  cl::ProgramCache programs;
+  auto devices = cl::open_devices(options.selection);
   int failures = 0;
-  for (auto& device : cl::open_devices(options.selection)) {
-    for (const auto entry : {selfcheck::KernelEntry::kNdRange, selfcheck::KernelEntry::kSingleWorkItem}) {
-      const auto got = selfcheck::axpy_opencl(device, programs, entry, a, x, y);
-      std::size_t mismatches = 0;
-      for (std::size_t i = 0; i < got.size(); ++i) mismatches += got[i] != expected[i] ? 1 : 0;
-      const char* name = entry == selfcheck::KernelEntry::kNdRange ? "NDRange" : "single work-item";
-      std::cout << "[" << device.info().index << "] " << cl::describe(device.info()) << ", " << name << ": "
-                << (mismatches == 0 ? "OK" : "FAILED") << " (" << got.size() << " elements, " << mismatches
-                << " differ from the C++ reference)\n";
-      failures += mismatches == 0 ? 0 : 1;
-    }
+  for (const auto& result : selfcheck::run_selfcheck(devices, options.size)) {
+    const char* name = result.entry == selfcheck::KernelEntry::kNdRange ? "NDRange" : "single work-item";
+    std::cout << "[" << result.device->index << "] " << cl::describe(*result.device) << ", " << name << ": "
+              << (result.mismatches == 0 ? "OK" : "FAILED") << " (" << result.elements << " elements, "
+              << result.mismatches << " differ from the C++ reference)\n";
+    failures += result.mismatches == 0 ? 0 : 1;
   }
   if (failures != 0) throw CommandFailed(kExitSelfcheck, std::to_string(failures) + " self-check run(s) failed");
 }

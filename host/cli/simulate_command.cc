@@ -6,7 +6,7 @@
 
 #include "host/cli/commands.h"
 #include "host/cli/size_option.h"
-#include "host/common/errors.h"
+#include "host/core/errors.h"
 #include "sim/builtin_scenes.h"
 #include "sim/simulate.h"
 

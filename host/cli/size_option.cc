@@ -3,7 +3,7 @@
 
 #include <charconv>
 
-#include "host/common/errors.h"
+#include "host/core/errors.h"
 
 namespace rfrecon::cli {
 

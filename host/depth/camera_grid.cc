@@ -41,7 +41,7 @@ cv::Mat sample_rectified_depth(const std::vector<float>& z_rect, const Rectified
   const auto z_at = [&](int u, int v) { return z_rect[static_cast<std::size_t>(v) * rows.width + u]; };
   for (int y = 0; y < rect_cam.rows; ++y) {
     for (int x = 0; x < rect_cam.cols; ++x) {
-      const cv::Vec2f position = rect_cam.at<cv::Vec2f>(y, x);
+      const cv::Vec2f& position = rect_cam.at<cv::Vec2f>(y, x);
       const float u = position[0], v = position[1];
       if (!(u >= 0.0f && v >= 0.0f && u <= static_cast<float>(rows.width - 1) &&
             v <= static_cast<float>(rows.height - 1))) {
@@ -59,10 +59,10 @@ cv::Mat sample_rectified_depth(const std::vector<float>& z_rect, const Rectified
   return z_grid;
 }
 
-reconstruct::Reconstruction camera_frame_maps(const cv::Mat& z_rect_mm, const cv::Mat& rect_cam,
-                                              const RfRectifiedRig& rig, const cv::Mat& R1) {
+outputs::Reconstruction camera_frame_maps(const cv::Mat& z_rect_mm, const cv::Mat& rect_cam, const RfRectifiedRig& rig,
+                                          const cv::Mat& R1) {
   const cv::Size size = z_rect_mm.size();
-  reconstruct::Reconstruction maps;
+  outputs::Reconstruction maps;
   maps.depth_mm = cv::Mat(size, CV_32F, cv::Scalar(kNaN));
   maps.points_mm = cv::Mat(size, CV_32FC3, cv::Scalar::all(kNaN));
   maps.normals = cv::Mat(size, CV_32FC3, cv::Scalar::all(kNaN));
@@ -73,7 +73,7 @@ reconstruct::Reconstruction camera_frame_maps(const cv::Mat& z_rect_mm, const cv
     for (int x = 0; x < size.width; ++x) {
       const float z = z_rect_mm.at<float>(y, x);
       if (!(z > 0.0f)) continue;
-      const cv::Vec2f position = rect_cam.at<cv::Vec2f>(y, x);
+      const cv::Vec2f& position = rect_cam.at<cv::Vec2f>(y, x);
       const cv::Vec3d X_rect(z * (position[0] - rig.cx_cam) / rig.f, z * (position[1] - rig.cy) / rig.f, z);
       const cv::Vec3d X_cam = cam_from_rect * X_rect;
       maps.points_mm.at<cv::Vec3f>(y, x) = cv::Vec3f(X_cam);

@@ -6,7 +6,7 @@
 #include <opencv2/core.hpp>
 
 #include "host/depth/rectified_rows.h"
-#include "host/reconstruct/reconstruction.h"
+#include "host/outputs/reconstruction.h"
 
 namespace rfrecon::depth {
 
@@ -19,7 +19,7 @@ cv::Mat sample_rectified_depth(const std::vector<float>& z_rect, const Rectified
 // Camera-frame maps from the rectified depth z_rect_mm at each camera pixel (CV_32F, NaN where none): X_rect =
 // z (a, beta, 1) at the pixel's rectified position, X_cam = R1^T X_rect. Normals come from central differences of
 // neighbouring points (one-sided at the edge of a region), turned toward the camera. Confidence is left at 0.
-reconstruct::Reconstruction camera_frame_maps(const cv::Mat& z_rect_mm, const cv::Mat& rect_cam,
-                                              const RfRectifiedRig& rig, const cv::Mat& R1);
+outputs::Reconstruction camera_frame_maps(const cv::Mat& z_rect_mm, const cv::Mat& rect_cam, const RfRectifiedRig& rig,
+                                          const cv::Mat& R1);
 
 }  // namespace rfrecon::depth

@@ -10,7 +10,8 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "host/common/errors.h"
+#include "host/core/errors.h"
+#include "host/core/image_file.h"
 #include "host/depth/bilinear.h"
 #include "host/depth/solid_angle.h"
 
@@ -22,9 +23,7 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 // Undistortion to tight tolerance: the default 5 iterations of cv::undistortPoints leave ~1e-3 px at the corners of
 // a lens with k1 = -0.08, which is a visible depth error.
-const cv::TermCriteria kUndistortCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 50, 1e-12);
-
-std::string size_text(cv::Size size) { return std::to_string(size.width) + "x" + std::to_string(size.height); }
+cv::TermCriteria undistort_criteria() { return {cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 50, 1e-12}; }
 
 // A pixel on an occlusion boundary sees both surfaces: its spot mixes theirs and it triangulates onto either, whatever
 // its centre sees. Rejects every pixel with a 3x3 neighbour whose depth differs by more than `relative` of its own
@@ -85,7 +84,7 @@ Rectification depth_rectification(const calib::StereoRig& rig, const std::string
       border.emplace_back(0.0f, static_cast<float>(y));
       border.emplace_back(static_cast<float>(size.width - 1), static_cast<float>(y));
     }
-    cv::undistortPoints(border, rectified, K, dist, R, unit_projection, kUndistortCriteria);
+    cv::undistortPoints(border, rectified, K, dist, R, unit_projection, undistort_criteria());
     return cv::boundingRect(rectified);
   };
   const cv::Rect camera_box = extent(rig.camera_matrix, rig.dist_coeffs, rig.R1, rig.camera_size);
@@ -123,7 +122,8 @@ CameraGridTriangulation triangulate_camera_grid(const transport::CompressedTrans
   std::vector<int> with_correspondence;
   pixels.reserve(transport.camera_pixels());
   for (int c = 0; c < camera_size.area(); ++c) {
-    pixels.emplace_back(static_cast<float>(c % camera_size.width), static_cast<float>(c / camera_size.width));
+    const int row = c / camera_size.width;  // integer division: the pixel's row
+    pixels.emplace_back(static_cast<float>(c % camera_size.width), static_cast<float>(row));
     const float x_p = transport.correspondence[2 * static_cast<std::size_t>(c)];
     if (!std::isnan(x_p)) {
       correspondences.emplace_back(x_p, transport.correspondence[2 * static_cast<std::size_t>(c) + 1]);
@@ -132,10 +132,10 @@ CameraGridTriangulation triangulate_camera_grid(const transport::CompressedTrans
   }
   std::vector<cv::Point2f> rect_cam, rect_proj;
   cv::undistortPoints(pixels, rect_cam, rig.camera_matrix, rig.dist_coeffs, rig.R1, rectification.P1,
-                      kUndistortCriteria);
+                      undistort_criteria());
   if (!correspondences.empty()) {
     cv::undistortPoints(correspondences, rect_proj, rig.projector_matrix, rig.projector_dist_coeffs, rig.R2,
-                        rectification.P2, kUndistortCriteria);
+                        rectification.P2, undistort_criteria());
   }
   result.rect_cam = cv::Mat(camera_size, CV_32FC2);
   std::copy(rect_cam.begin(), rect_cam.end(), result.rect_cam.begin<cv::Vec2f>());

@@ -2,12 +2,11 @@
 // kernels/depth/row_integration.h and row_fusion.h.
 #include "host/depth/row_solvers.h"
 
-#include <initializer_list>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
-#include "host/cl/error.h"
+#include "host/cl/kernel_launch.h"
 #include "kernels/depth/row_fusion.h"
 #include "kernels/depth/row_integration.h"
 
@@ -62,39 +61,22 @@ struct RowBuffers {
   RowBuffers(cl::DeviceContext& device, const RectifiedRows& rows, int row_begin, int row_end) {
     const std::size_t pixels = offset(rows, row_end) - offset(rows, row_begin);
     const std::size_t proj_pixels = proj_offset(rows, row_end) - proj_offset(rows, row_begin);
-    e_cam = make(device, rows.e_cam.data() + offset(rows, row_begin), pixels * sizeof(float), "clCreateBuffer(e_cam)");
-    e_proj = make(device, rows.e_proj.data() + proj_offset(rows, row_begin), proj_pixels * sizeof(float),
-                  "clCreateBuffer(e_proj)");
-    z_tri = make(device, rows.z_tri.data() + offset(rows, row_begin), pixels * sizeof(float), "clCreateBuffer(z_tri)");
-    runs = make(device, rows.runs.data() + offset(rows, row_begin), pixels, "clCreateBuffer(runs)");
-  }
-
-  static ::cl::Buffer make(cl::DeviceContext& device, const void* data, std::size_t bytes, const char* name) {
-    cl_int status = CL_SUCCESS;
-    ::cl::Buffer buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes, const_cast<void*>(data),
-                        &status);
-    RF_CL_CHECK_CODE(status, name);
-    return buffer;
+    e_cam = cl::upload(device.context(), rows.e_cam.data() + offset(rows, row_begin), pixels);
+    e_proj = cl::upload(device.context(), rows.e_proj.data() + proj_offset(rows, row_begin), proj_pixels);
+    z_tri = cl::upload(device.context(), rows.z_tri.data() + offset(rows, row_begin), pixels);
+    runs = cl::upload(device.context(), rows.runs.data() + offset(rows, row_begin), pixels);
   }
 };
 
-// Sets the arguments shared by both kernels (geometry, tile, sizes) and returns the next argument index.
-cl_uint set_common_args(::cl::Kernel& kernel, const RectifiedRows& rows, int row_begin, int row_end, int count) {
-  cl_uint index = 0;
-  for (const float value : {rows.rig.f, rows.rig.cx_cam, rows.rig.cx_proj, rows.rig.cy, rows.rig.b}) {
-    RF_CL_CHECK(kernel.setArg(index++, value));
-  }
-  for (const cl_int value : {row_begin, row_end - row_begin, rows.width, rows.proj_width, count}) {
-    RF_CL_CHECK(kernel.setArg(index++, value));
-  }
-  return index;
-}
-
-void run_rows(cl::DeviceContext& device, ::cl::Kernel& kernel, KernelEntry entry, int row_count) {
-  const std::size_t global = entry == KernelEntry::kSingleWorkItem ? 1 : static_cast<std::size_t>(row_count);
-  RF_CL_CHECK(
-      device.queue().enqueueNDRangeKernel(kernel, ::cl::NullRange, ::cl::NDRange(global),
-                                          entry == KernelEntry::kSingleWorkItem ? ::cl::NDRange(1) : ::cl::NullRange));
+// Sets the kernel's arguments: those both kernels share (geometry, tile, sizes), then `rest`, and runs it over the
+// rows, one work-item per row (kNdRange) or one in all.
+template <typename... Rest>
+void run_rows(cl::DeviceContext& device, ::cl::Kernel& kernel, KernelEntry entry, const RectifiedRows& rows,
+              int row_begin, int row_end, int count, const Rest&... rest) {
+  const RfRectifiedRig& rig = rows.rig;
+  cl::set_args(kernel, rig.f, rig.cx_cam, rig.cx_proj, rig.cy, rig.b, cl_int{row_begin}, cl_int{row_end - row_begin},
+               cl_int{rows.width}, cl_int{rows.proj_width}, cl_int{count}, rest...);
+  cl::enqueue_kernel(device.queue(), kernel, entry, static_cast<std::size_t>(row_end - row_begin));
 }
 
 }  // namespace
@@ -134,23 +116,12 @@ std::vector<float> integrate_rows_opencl(cl::DeviceContext& device, cl::ProgramC
   const RowBuffers inputs(device, rows, row_begin, row_end);
   // z also holds each run's seed between passes. It starts defined (NaN) because the compiler may load z and z_tri
   // both before choosing the seed of the first pass (oclgrind reports that load otherwise).
-  std::vector<float> z(offset(rows, row_end) - offset(rows, row_begin), std::numeric_limits<float>::quiet_NaN());
-  cl_int status = CL_SUCCESS;
-  ::cl::Buffer z_buffer(device.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, z.size() * sizeof(float), z.data(),
-                        &status);
-  RF_CL_CHECK_CODE(status, "clCreateBuffer(z)");
-  const bool single = entry == KernelEntry::kSingleWorkItem;
-  ::cl::Kernel kernel(programs.get(device, "depth/integrate.cl"),
-                      single ? "integrate_rows_single" : "integrate_rows_ndrange", &status);
-  RF_CL_CHECK_CODE(status, "clCreateKernel(integrate_rows)");
-  cl_uint index = set_common_args(kernel, rows, row_begin, row_end, options.passes);
-  for (const ::cl::Buffer* buffer : std::initializer_list<const ::cl::Buffer*>{
-           &inputs.e_cam, &inputs.e_proj, &inputs.z_tri, &inputs.runs, &z_buffer}) {
-    RF_CL_CHECK(kernel.setArg(index++, *buffer));
-  }
-  run_rows(device, kernel, entry, row_end - row_begin);
-  RF_CL_CHECK(device.queue().enqueueReadBuffer(z_buffer, CL_TRUE, 0, z.size() * sizeof(float), z.data()));
-  return z;
+  const std::vector<float> z(offset(rows, row_end) - offset(rows, row_begin), std::numeric_limits<float>::quiet_NaN());
+  const ::cl::Buffer z_buffer = cl::upload(device.context(), z, CL_MEM_READ_WRITE);
+  ::cl::Kernel kernel = cl::make_kernel(programs.get(device, "depth/integrate.cl"), "integrate_rows", entry);
+  run_rows(device, kernel, entry, rows, row_begin, row_end, options.passes, inputs.e_cam, inputs.e_proj, inputs.z_tri,
+           inputs.runs, z_buffer);
+  return cl::download<float>(device.queue(), z_buffer, z.size());
 }
 
 std::vector<float> fuse_rows_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
@@ -158,30 +129,16 @@ std::vector<float> fuse_rows_opencl(cl::DeviceContext& device, cl::ProgramCache&
                                     const FusionOptions& options, int row_begin, int row_end) {
   std::vector<float> z = checked_fusion_start(rows, z_start, options, row_begin, row_end);
   const RowBuffers inputs(device, rows, row_begin, row_end);
-  const std::size_t bytes = z.size() * sizeof(float);
-  cl_int status = CL_SUCCESS;
-  ::cl::Buffer z_buffer(device.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, bytes, z.data(), &status);
-  RF_CL_CHECK_CODE(status, "clCreateBuffer(z)");
+  const ::cl::Buffer z_buffer = cl::upload(device.context(), z, CL_MEM_READ_WRITE);
   // Scratch of the Thomas sweeps, zeroed from the host: every element is written before it is read, but oclgrind
   // follows speculative loads and does not count clEnqueueFillBuffer as initialisation.
-  std::vector<float> zeros(z.size(), 0.0f);
-  ::cl::Buffer c_buffer(device.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, bytes, zeros.data(), &status);
-  RF_CL_CHECK_CODE(status, "clCreateBuffer(c)");
-  ::cl::Buffer d_buffer(device.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, bytes, zeros.data(), &status);
-  RF_CL_CHECK_CODE(status, "clCreateBuffer(d)");
-  const bool single = entry == KernelEntry::kSingleWorkItem;
-  ::cl::Kernel kernel(programs.get(device, "depth/fuse.cl"), single ? "fuse_rows_single" : "fuse_rows_ndrange",
-                      &status);
-  RF_CL_CHECK_CODE(status, "clCreateKernel(fuse_rows)");
-  cl_uint index = set_common_args(kernel, rows, row_begin, row_end, options.iterations);
-  RF_CL_CHECK(kernel.setArg(index++, options.sigma_disparity_px));
-  RF_CL_CHECK(kernel.setArg(index++, options.sigma_step_mm));
-  for (const ::cl::Buffer* buffer : std::initializer_list<const ::cl::Buffer*>{
-           &inputs.e_cam, &inputs.e_proj, &inputs.z_tri, &inputs.runs, &z_buffer, &c_buffer, &d_buffer}) {
-    RF_CL_CHECK(kernel.setArg(index++, *buffer));
-  }
-  run_rows(device, kernel, entry, row_end - row_begin);
-  RF_CL_CHECK(device.queue().enqueueReadBuffer(z_buffer, CL_TRUE, 0, bytes, z.data()));
+  const std::vector<float> zeros(z.size(), 0.0f);
+  const ::cl::Buffer c_buffer = cl::upload(device.context(), zeros, CL_MEM_READ_WRITE);
+  const ::cl::Buffer d_buffer = cl::upload(device.context(), zeros, CL_MEM_READ_WRITE);
+  ::cl::Kernel kernel = cl::make_kernel(programs.get(device, "depth/fuse.cl"), "fuse_rows", entry);
+  run_rows(device, kernel, entry, rows, row_begin, row_end, options.iterations, options.sigma_disparity_px,
+           options.sigma_step_mm, inputs.e_cam, inputs.e_proj, inputs.z_tri, inputs.runs, z_buffer, c_buffer, d_buffer);
+  cl::read_buffer(device.queue(), z_buffer, z.data(), z.size());
   return z;
 }
 

@@ -47,6 +47,7 @@ void BlockRunner::run_round(const std::function<void(std::size_t)>& body) {
     body(live.front());
   } else {
     std::vector<std::thread> threads;
+    threads.reserve(live.size());
     for (const std::size_t i : live) threads.emplace_back(body, i);
     for (auto& thread : threads) thread.join();
   }

@@ -4,7 +4,7 @@
 #include <charconv>
 #include <cstdlib>
 
-#include "host/common/errors.h"
+#include "host/core/errors.h"
 
 namespace rfrecon::sched {
 

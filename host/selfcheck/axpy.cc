@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "host/cl/error.h"
+#include "host/cl/kernel_launch.h"
 
 namespace rfrecon::selfcheck {
 
@@ -18,30 +18,12 @@ std::vector<float> axpy_opencl(cl::DeviceContext& device, cl::ProgramCache& prog
                                const std::vector<float>& x, std::vector<float> y) {
   if (x.size() != y.size()) throw std::invalid_argument("axpy: x and y differ in size");
   if (x.empty()) return y;
-  const auto n = static_cast<cl_uint>(x.size());
-  const std::size_t bytes = x.size() * sizeof(float);
-  cl_int status = CL_SUCCESS;
-  ::cl::Buffer x_buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes, const_cast<float*>(x.data()),
-                        &status);
-  RF_CL_CHECK_CODE(status, "clCreateBuffer(x)");
-  ::cl::Buffer y_buffer(device.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, bytes, y.data(), &status);
-  RF_CL_CHECK_CODE(status, "clCreateBuffer(y)");
-
-  const bool single = entry == KernelEntry::kSingleWorkItem;
-  ::cl::Kernel kernel(programs.get(device, "selfcheck/axpy.cl"), single ? "axpy_single" : "axpy_ndrange", &status);
-  RF_CL_CHECK_CODE(status, "clCreateKernel");
-  RF_CL_CHECK(kernel.setArg(0, a));
-  RF_CL_CHECK(kernel.setArg(1, x_buffer));
-  RF_CL_CHECK(kernel.setArg(2, y_buffer));
-  RF_CL_CHECK(kernel.setArg(3, n));
-  auto& queue = device.queue();
-  if (single) {
-    RF_CL_CHECK(queue.enqueueNDRangeKernel(kernel, ::cl::NullRange, ::cl::NDRange(1), ::cl::NDRange(1)));
-  } else {
-    RF_CL_CHECK(queue.enqueueNDRangeKernel(kernel, ::cl::NullRange, ::cl::NDRange(n), ::cl::NullRange));
-  }
-  RF_CL_CHECK(queue.enqueueReadBuffer(y_buffer, CL_TRUE, 0, bytes, y.data()));
-  return y;
+  const ::cl::Buffer x_buffer = cl::upload(device.context(), x);
+  const ::cl::Buffer y_buffer = cl::upload(device.context(), y, CL_MEM_READ_WRITE);
+  ::cl::Kernel kernel = cl::make_kernel(programs.get(device, "selfcheck/axpy.cl"), "axpy", entry);
+  cl::set_args(kernel, a, x_buffer, y_buffer, static_cast<cl_uint>(x.size()));
+  cl::enqueue_kernel(device.queue(), kernel, entry, x.size());
+  return cl::download<float>(device.queue(), y_buffer, y.size());
 }
 
 }  // namespace rfrecon::selfcheck

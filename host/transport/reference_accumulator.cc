@@ -3,13 +3,14 @@
 #include <limits>
 #include <stdexcept>
 
+#include "host/capture/protocol.h"
 #include "host/transport/accumulator.h"
 
 namespace rfrecon::transport {
 
 std::uint32_t gray_bit_mask(const TransportSetup& setup, GrayAxis axis, int bit) {
   const int n = axis == GrayAxis::kColumns ? setup.projector_size.width : setup.projector_size.height;
-  const int bits = n <= 1 ? 0 : static_cast<int>(std::ceil(std::log2(static_cast<double>(n))));
+  const int bits = capture::gray_bits(n);
   if (bit < 0 || bit >= bits) throw std::invalid_argument("Gray code bit out of range");
   return 1u << (bits - 1 - bit);
 }

@@ -3,7 +3,7 @@
 
 #include <stdexcept>
 
-#include "host/cl/error.h"
+#include "host/cl/kernel_launch.h"
 
 namespace rfrecon::transport {
 
@@ -16,38 +16,15 @@ void check_light(std::size_t got, std::size_t expected, const char* what) {
   }
 }
 
-template <typename T>
-::cl::Buffer input_buffer(cl::DeviceContext& device, const std::vector<T>& host) {
-  cl_int status = CL_SUCCESS;
-  // A zero-sized buffer is invalid in OpenCL; keep one element for empty inputs (never read).
-  std::vector<T> padded;
-  const std::vector<T>& data = host.empty() ? (padded = std::vector<T>(1)) : host;
-  ::cl::Buffer buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, data.size() * sizeof(T),
-                      const_cast<T*>(data.data()), &status);
-  RF_CL_CHECK_CODE(status, "clCreateBuffer");
-  return buffer;
-}
-
 template <typename... Args>
 std::vector<float> run_spmv(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry, const char* name,
                             std::size_t n, const Args&... args) {
-  std::vector<float> image(n, 0.0f);
-  if (n == 0) return image;
-  const bool single = entry == KernelEntry::kSingleWorkItem;
-  cl_int status = CL_SUCCESS;
-  ::cl::Kernel kernel(programs.get(device, "transport/spmv.cl"),
-                      (std::string(name) + (single ? "_single" : "_ndrange")).c_str(), &status);
-  RF_CL_CHECK_CODE(status, "clCreateKernel");
-  ::cl::Buffer output(device.context(), CL_MEM_WRITE_ONLY, n * sizeof(float), nullptr, &status);
-  RF_CL_CHECK_CODE(status, "clCreateBuffer");
-  cl_uint index = 0;
-  (RF_CL_CHECK(kernel.setArg(index++, args)), ...);
-  RF_CL_CHECK(kernel.setArg(index++, output));
-  RF_CL_CHECK(kernel.setArg(index++, static_cast<cl_uint>(n)));
-  RF_CL_CHECK(device.queue().enqueueNDRangeKernel(kernel, ::cl::NullRange, single ? ::cl::NDRange(1) : ::cl::NDRange(n),
-                                                  single ? ::cl::NDRange(1) : ::cl::NullRange));
-  RF_CL_CHECK(device.queue().enqueueReadBuffer(output, CL_TRUE, 0, n * sizeof(float), image.data()));
-  return image;
+  if (n == 0) return {};
+  ::cl::Kernel kernel = cl::make_kernel(programs.get(device, "transport/spmv.cl"), name, entry);
+  const ::cl::Buffer output = cl::make_buffer<float>(device.context(), n, CL_MEM_WRITE_ONLY);
+  cl::set_args(kernel, args..., output, static_cast<cl_uint>(n));
+  cl::enqueue_kernel(device.queue(), kernel, entry, n);
+  return cl::download<float>(device.queue(), output, n);
 }
 
 }  // namespace
@@ -103,17 +80,17 @@ std::vector<float> primal_opencl(cl::DeviceContext& device, cl::ProgramCache& pr
                                  const CompressedTransport& transport, const std::vector<float>& light_p) {
   check_light(light_p.size(), transport.projector_pixels(), "primal");
   return run_spmv(device, programs, entry, "primal", transport.camera_pixels(), static_cast<cl_uint>(transport.k()),
-                  input_buffer(device, transport.indices), input_buffer(device, transport.weights),
-                  input_buffer(device, light_p));
+                  cl::upload(device.context(), transport.indices), cl::upload(device.context(), transport.weights),
+                  cl::upload(device.context(), light_p));
 }
 
 std::vector<float> dual_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
                                const TransposedTransport& transposed, const std::vector<float>& light_c) {
   const std::size_t n = static_cast<std::size_t>(transposed.projector_size.area());
   if (transposed.row_start.size() != n + 1) throw std::invalid_argument("dual: malformed transposed transport");
-  return run_spmv(device, programs, entry, "dual", n, input_buffer(device, transposed.row_start),
-                  input_buffer(device, transposed.camera_pixel), input_buffer(device, transposed.weights),
-                  input_buffer(device, light_c));
+  return run_spmv(device, programs, entry, "dual", n, cl::upload(device.context(), transposed.row_start),
+                  cl::upload(device.context(), transposed.camera_pixel),
+                  cl::upload(device.context(), transposed.weights), cl::upload(device.context(), light_c));
 }
 
 }  // namespace rfrecon::transport

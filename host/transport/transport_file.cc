@@ -7,8 +7,8 @@
 
 #include <H5Cpp.h>
 
-#include "host/common/atomic_file.h"
-#include "host/common/errors.h"
+#include "host/core/atomic_file.h"
+#include "host/core/errors.h"
 
 namespace rfrecon::transport {
 

@@ -1,13 +1,12 @@
 // Portability macros for rfrecon kernels: FPGA-only attributes that expand to nothing on CPU and GPU.
 //
-// The host prepends a per-device preamble (host/cl/program_cache.cc) defining RF_DEVICE_CPU, RF_DEVICE_GPU or
-// RF_DEVICE_ACCELERATOR, RF_TARGET_INTEL_FPGA (Intel FPGA SDK, aoc) or RF_TARGET_XILINX_FPGA (Vitis, v++),
-// RF_HAS_FP64 and RF_HAS_FP16. The FPGA compilers define the same targets when they build hw/ binaries.
+// The target is RF_TARGET_INTEL_FPGA (Intel FPGA SDK, aoc) or RF_TARGET_XILINX_FPGA (Vitis, v++): the host's
+// per-device preamble (host/cl/program_cache.cc) defines it for those boards; an offline build of a binary must
+// pass the same -D to the vendor's compiler.
 //
 //   RF_SINGLE_TASK        before a kernel: it runs as one work-item (a pipelined loop nest on FPGA).
 //   RF_PIPELINE_II(n)     before a loop: ask for initiation interval n (one iteration every n clocks).
 //   RF_UNROLL             before a loop with a constant trip count: unroll it fully.
-//   RF_UNROLL_N(n)        before a loop: unroll by n.
 //   RF_IVDEP_SAFELEN(n)   before a loop: a loop-carried dependency spans at least n iterations (rows interleaved
 //                         by a single work-item kernel), so the loop can still start one iteration per clock.
 //   RF_PARTITION_COMPLETE after a private array's name: keep every element in registers (fully partitioned),
@@ -23,21 +22,18 @@
 #define RF_SINGLE_TASK __attribute__((max_global_work_dim(0)))
 #define RF_PIPELINE_II(n) RF_PRAGMA_(ii n)
 #define RF_UNROLL RF_PRAGMA_(unroll)
-#define RF_UNROLL_N(n) RF_PRAGMA_(unroll n)
 #define RF_IVDEP_SAFELEN(n) RF_PRAGMA_(ivdep safelen(n))
 #define RF_PARTITION_COMPLETE __attribute__((register))
 #elif defined(RF_TARGET_XILINX_FPGA)
 #define RF_SINGLE_TASK __attribute__((reqd_work_group_size(1, 1, 1)))
 #define RF_PIPELINE_II(n) __attribute__((xcl_pipeline_loop(n)))
 #define RF_UNROLL __attribute__((opencl_unroll_hint))
-#define RF_UNROLL_N(n) __attribute__((opencl_unroll_hint(n)))
 #define RF_IVDEP_SAFELEN(n)  // v++ has no OpenCL C equivalent; it schedules the interleaved loop at a longer II
 #define RF_PARTITION_COMPLETE __attribute__((xcl_array_partition(complete, 1)))
 #else
 #define RF_SINGLE_TASK
 #define RF_PIPELINE_II(n)
 #define RF_UNROLL
-#define RF_UNROLL_N(n)
 #define RF_IVDEP_SAFELEN(n)
 #define RF_PARTITION_COMPLETE
 #endif

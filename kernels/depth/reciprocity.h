@@ -24,7 +24,7 @@
 #endif
 
 // Rectified geometry of one rig (pixels, millimetres).
-typedef struct {
+typedef struct {  // NOLINT(modernize-use-using): shared with OpenCL C, which has no `using`
   float f;        // rectified focal length, px
   float cx_cam;   // rectified principal point x of the camera, px
   float cx_proj;  // rectified principal point x of the projector, px

@@ -12,7 +12,7 @@
 #include "depth/row_runs.h"
 
 // State of the run being integrated in one row.
-typedef struct {
+typedef struct {  // NOLINT(modernize-use-using): shared with OpenCL C, which has no `using`
   int start;      // column of the run's first pixel, -1 outside a run
   int count;      // pixels of the run with a triangulated depth
   float sum_rel;  // sum over them of (z_tri - z) / z

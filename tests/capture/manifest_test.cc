@@ -8,7 +8,8 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "host/common/errors.h"
+#include "host/core/errors.h"
+#include "tests/common/temp_dir.h"
 
 namespace rfrecon::capture {
 namespace {
@@ -18,14 +19,6 @@ using ::testing::HasSubstr;
 
 class ManifestTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("rfrecon_manifest_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   // A complete capture of a 32x16 projector seen by a 20x10 camera, frames written as 8-bit PNG.
   CaptureManifest write_capture(int dot_spacing) {
     CaptureManifest manifest;
@@ -53,7 +46,8 @@ class ManifestTest : public ::testing::Test {
     }
   }
 
-  fs::path dir_;
+  rfrecon::testing::TempDir temp_{"manifest"};
+  const fs::path dir_ = temp_.path();
 };
 
 TEST_F(ManifestTest, RoundTrips) {

@@ -8,12 +8,16 @@
 
 #include "host/cl/device_selection.h"
 #include "host/cl/error.h"
+#include "host/cl/kernel_launch.h"
 #include "host/selfcheck/axpy.h"
+#include "tests/common/temp_dir.h"
 
 namespace rfrecon::cl {
 namespace {
 
+using ::testing::EndsWith;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 DeviceContext first_device() {
   const auto selected = select_devices(enumerate_devices(), effective_selection(""));
@@ -46,20 +50,23 @@ TEST(ProgramCacheApiErrorTest, CompileErrorCarriesBuildLog) {
   }
 }
 
-TEST(ProgramCacheTest, PreambleDescribesTheDevice) {
-  auto device = first_device();
-  const std::string preamble = device_preamble(device.info());
-  if (device.info().kind == DeviceKind::kCpu) {
-    EXPECT_THAT(preamble, HasSubstr("#define RF_DEVICE_CPU 1"));
-  }
-  EXPECT_EQ(device.info().fp64, preamble.find("RF_HAS_FP64") != std::string::npos);
+TEST(ProgramCacheTest, PreambleNamesOnlyFpgaTargets) {
+  DeviceInfo info;
+  EXPECT_THAT(device_preamble(info), Not(HasSubstr("#define"))) << "CPUs and GPUs get no target macro";
+  EXPECT_THAT(device_preamble(info), EndsWith("#line 1\n"));
+  info.intel_fpga = true;
+  EXPECT_THAT(device_preamble(info), HasSubstr("#define RF_TARGET_INTEL_FPGA 1\n"));
+  info.intel_fpga = false;
+  info.xilinx_fpga = true;
+  EXPECT_THAT(device_preamble(info), HasSubstr("#define RF_TARGET_XILINX_FPGA 1\n"));
 }
 
 TEST(ProgramCacheTest, BinaryRoundTripRunsTheSameKernel) {
   auto device = first_device();
   ProgramCache source_programs;
   const auto built = source_programs.get(device, "selfcheck/axpy.cl");
-  const auto dir = std::filesystem::temp_directory_path() / ("rfrecon_bin_" + std::to_string(::getpid()));
+  const rfrecon::testing::TempDir temp("program_binary");
+  const auto dir = temp.path();
   const auto path = dir / binary_file_name("selfcheck/axpy.cl", device.info());
   save_program_binary(built, path);
   ASSERT_TRUE(std::filesystem::exists(path));
@@ -73,20 +80,11 @@ TEST(ProgramCacheTest, BinaryRoundTripRunsTheSameKernel) {
   // The loaded program computes what the reference computes.
   const std::vector<float> x{1, 2, 3, 4};
   const std::vector<float> y{0.5f, -1, 2, 8};
-  std::vector<float> out = y;
-  const std::size_t bytes = x.size() * sizeof(float);
-  const cl_mem_flags in_flags = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
-  const cl_mem_flags inout_flags = CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR;
-  ::cl::Buffer xb(device.context(), in_flags, bytes, const_cast<float*>(x.data()));
-  ::cl::Buffer yb(device.context(), inout_flags, bytes, out.data());
-  kernel.setArg(0, 2.0f);
-  kernel.setArg(1, xb);
-  kernel.setArg(2, yb);
-  kernel.setArg(3, cl_uint{4});
-  RF_CL_CHECK(device.queue().enqueueNDRangeKernel(kernel, ::cl::NullRange, ::cl::NDRange(4)));
-  RF_CL_CHECK(device.queue().enqueueReadBuffer(yb, CL_TRUE, 0, bytes, out.data()));
-  EXPECT_EQ(out, selfcheck::axpy_reference(2.0f, x, y));
-  std::filesystem::remove_all(dir);
+  const ::cl::Buffer xb = upload(device.context(), x);
+  const ::cl::Buffer yb = upload(device.context(), y, CL_MEM_READ_WRITE);
+  set_args(kernel, 2.0f, xb, yb, static_cast<cl_uint>(x.size()));
+  enqueue_kernel(device.queue(), kernel, KernelEntry::kNdRange, x.size());
+  EXPECT_EQ(download<float>(device.queue(), yb, y.size()), selfcheck::axpy_reference(2.0f, x, y));
 }
 
 TEST(ProgramCacheApiErrorTest, MissingBinaryIsNamed) {

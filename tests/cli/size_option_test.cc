@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "host/common/errors.h"
+#include "host/core/errors.h"
 
 namespace rfrecon::cli {
 namespace {

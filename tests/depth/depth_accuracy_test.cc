@@ -9,8 +9,8 @@
 
 #include "calib/rig.h"
 #include "host/cl/device_selection.h"
-#include "host/depth/reconstruct.h"
-#include "host/reconstruct/evaluation.h"
+#include "host/depth/reconstruct_depth.h"
+#include "host/evaluation/evaluation.h"
 #include "host/transport/transport_file.h"
 
 namespace rfrecon::depth {
@@ -24,7 +24,7 @@ const fs::path kEstimatedRig = kFixtures / "checkerboard-poses" / "estimated" / 
 std::map<Method, double> rms_percent(const std::string& scene, const fs::path& rig_file) {
   const auto transport = transport::read_transport(kFixtures / scene / "T.h5");
   const auto rig = calib::read_rig(rig_file);
-  const auto truth = reconstruct::read_evaluation_truth(kFixtures / scene);
+  const auto truth = evaluation::read_evaluation_truth(kFixtures / scene);
   auto devices = cl::open_devices("all");
   cl::ProgramCache programs;
   std::map<Method, double> result;
@@ -32,7 +32,7 @@ std::map<Method, double> rms_percent(const std::string& scene, const fs::path& r
     DepthOptions options;
     options.method = method;
     const auto run = reconstruct_depth(transport, rig, rig_file.string(), options, devices, programs);
-    const auto evaluation = reconstruct::evaluate(run.maps, truth);
+    const auto evaluation = evaluation::evaluate(run.maps, truth);
     // Every method must cover at least half of the subject (the cylinder's saturated highlight is masked): the masks
     // may not buy accuracy by dropping most pixels.
     EXPECT_GT(evaluation.object.coverage_percent, 50.0) << scene << " " << method_name(method);

@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "host/cl/device_selection.h"
-#include "host/depth/reconstruct.h"
-#include "host/transport/pipeline.h"
+#include "host/depth/reconstruct_depth.h"
+#include "host/transport/compute_transport.h"
 #include "sim/frames.h"
 #include "sim/render.h"
 #include "sim/truth_io.h"

@@ -9,8 +9,8 @@
 
 #include "host/capture/protocol.h"
 #include "host/cl/device_selection.h"
-#include "host/sched/spmv_on_devices.h"
-#include "host/transport/pipeline.h"
+#include "host/transport/compute_transport.h"
+#include "host/transport/spmv_on_devices.h"
 #include "tests/transport/synthetic_capture.h"
 #include "tests/transport/test_capture_feed.h"
 
@@ -126,9 +126,14 @@ TEST_F(MultiDeviceTest, DualSurvivesAFailingDevice) {
   options_.first_tile_items = 1;
   options_.max_tile_items = 1;
   options_.faults = FaultPolicy::parse("0:1");
-  const auto dual = dual_on_devices(devices_, programs_, KernelEntry::kNdRange, transposed, light_c, options_);
-  expect_identical(dual.image,
-                   transport::dual_opencl(devices_[0], programs_, KernelEntry::kNdRange, transposed, light_c), "dual");
+  const auto expected = transport::dual_opencl(devices_[0], programs_, KernelEntry::kNdRange, transposed, light_c);
+  // On a loaded machine device 1 may still take every tile before device 0 takes its first (then nothing fails and
+  // the image must still be right); a few runs give device 0 its tile.
+  transport::ProductRun dual;
+  for (int attempt = 0; attempt < 5 && dual.report.failures.empty(); ++attempt) {
+    dual = dual_on_devices(devices_, programs_, KernelEntry::kNdRange, transposed, light_c, options_);
+    expect_identical(dual.image, expected, "dual");
+  }
   ASSERT_EQ(dual.report.failures.size(), 1u);
   EXPECT_TRUE(dual.report.devices[0].failed);
 }

@@ -6,9 +6,10 @@
 #include <opencv2/calib3d.hpp>
 
 #include "calib/rig.h"
-#include "host/common/errors.h"
+#include "host/core/errors.h"
 #include "sim/builtin_scenes.h"
 #include "sim/truth_io.h"
+#include "tests/common/temp_dir.h"
 
 namespace rfrecon {
 namespace {
@@ -17,11 +18,8 @@ namespace fs = std::filesystem;
 
 class RigFileTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    file_ = fs::temp_directory_path() / ("rfrecon_rig_test_" + std::to_string(::getpid()) + ".yaml");
-  }
-  void TearDown() override { fs::remove(file_); }
-  fs::path file_;
+  rfrecon::testing::TempDir temp_{"rig_file"};
+  const fs::path file_ = temp_.path() / "rig.yaml";
 };
 
 double max_difference(const cv::Mat& a, const cv::Mat& b) { return cv::norm(a, b, cv::NORM_INF); }

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "sim/render.h"
+#include "tests/common/temp_dir.h"
 #include "tests/sim/test_scenes.h"
 
 namespace rfrecon::sim {
@@ -70,7 +71,8 @@ TEST(ShapesTest, SurfacePointsAndNormalsBelongToTheShape) {
 TEST(ShapesTest, TriangleMeshOfABoxRendersLikeTheBox) {
   // The same 60 mm box as 12 triangles (OBJ, loaded with assimp) and as the analytic box: identical depth wherever
   // both see it (1e-4 mm: two intersection formulas in double, stored as float32) and the same silhouette.
-  const fs::path file = fs::temp_directory_path() / ("rfrecon_box_" + std::to_string(::getpid()) + ".obj");
+  const rfrecon::testing::TempDir temp("box_mesh");
+  const fs::path file = temp.path() / "box.obj";
   {
     std::ofstream obj(file);
     for (int i = 0; i < 8; ++i)
@@ -85,7 +87,6 @@ TEST(ShapesTest, TriangleMeshOfABoxRendersLikeTheBox) {
   const auto from_mesh = render_transport(make_scene(small_rig({mesh})), {1}).truth;
   const auto from_box =
       render_transport(make_scene(small_rig({object("box", {60, 60, 60}, position, rotation)})), {1}).truth;
-  fs::remove(file);
   int both = 0, differ = 0;
   for (int i = 0; i < from_box.depth_mm.rows * from_box.depth_mm.cols; ++i) {
     const float a = from_mesh.depth_mm.at<float>(i), b = from_box.depth_mm.at<float>(i);
@@ -121,6 +122,31 @@ TEST(ShapesTest, InterreflectionOnlyWhereSurfacesSeeEachOther) {
   const Eigen::VectorXf a = corner_direct * ones, b = corner_bounce * ones;
   EXPECT_TRUE(((b - a).array() >= -1e-6f * a.array()).all());
   EXPECT_GT((b - a).maxCoeff(), 0.01f * a.maxCoeff());
+}
+
+TEST(CharacteristicSize, FollowsTheDocumentedRulePerShape) {
+  Object o;
+  o.kind = ShapeKind::kBox;
+  o.size = {10.0, 70.0, 30.0};
+  EXPECT_EQ(characteristic_size_mm(o).first, 70.0);
+  o.kind = ShapeKind::kSphere;
+  o.size = {25.0};  // radius
+  EXPECT_EQ(characteristic_size_mm(o).first, 50.0);
+  o.kind = ShapeKind::kCylinder;
+  o.size = {20.0, 120.0};  // radius, length
+  EXPECT_EQ(characteristic_size_mm(o).first, 120.0);
+  o.size = {40.0, 30.0};
+  EXPECT_EQ(characteristic_size_mm(o).first, 80.0);
+  o.kind = ShapeKind::kPlane;
+  o.size = {400.0, 300.0};
+  EXPECT_EQ(characteristic_size_mm(o).first, 400.0);
+  o.size = {0.0, 0.0};  // infinite
+  EXPECT_EQ(characteristic_size_mm(o).first, 0.0);
+  o.kind = ShapeKind::kMesh;
+  auto mesh = std::make_shared<TriangleMesh>();
+  mesh->vertices = {{-5.0, 0.0, 0.0}, {5.0, 12.0, 0.0}, {0.0, 0.0, 3.0}};
+  o.mesh = mesh;
+  EXPECT_EQ(characteristic_size_mm(o).first, 12.0);
 }
 
 }  // namespace

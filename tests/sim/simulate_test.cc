@@ -9,9 +9,10 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "host/capture/manifest.h"
-#include "host/common/errors.h"
+#include "host/core/errors.h"
 #include "sim/builtin_scenes.h"
 #include "sim/frames.h"
+#include "tests/common/temp_dir.h"
 #include "tests/sim/test_scenes.h"
 
 namespace rfrecon::sim {
@@ -26,13 +27,6 @@ const nlohmann::json kLambert{{"brdf", "lambert"}, {"diffuse", 0.6}};
 
 class SimulateTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("rfrecon_sim_test_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   static std::string bytes(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -45,7 +39,8 @@ class SimulateTest : public ::testing::Test {
     return out;
   }
 
-  fs::path dir_;
+  rfrecon::testing::TempDir temp_{"sim_test"};
+  const fs::path dir_ = temp_.path();
 };
 
 Scene small_plane_scene() {

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "host/transport/pipeline.h"
+#include "host/transport/compute_transport.h"
 #include "host/transport/spmv.h"
 #include "sim/frames.h"
 #include "sim/render.h"

@@ -7,7 +7,6 @@
 #include <random>
 
 #include <opencv2/imgcodecs.hpp>
-#include <unistd.h>
 
 namespace rfrecon::transport::testing {
 
@@ -103,17 +102,6 @@ capture::CaptureManifest write_capture(const fs::path& dir, const PlaneScene& sc
   }
   capture::write_manifest(manifest, dir);
   return manifest;
-}
-
-TempDir::TempDir(const std::string& name)
-    : path_(fs::temp_directory_path() / ("rfrecon_transport_" + name + "_" + std::to_string(::getpid()))) {
-  fs::remove_all(path_);
-  fs::create_directories(path_);
-}
-
-TempDir::~TempDir() {
-  std::error_code ignored;
-  fs::remove_all(path_, ignored);
 }
 
 }  // namespace rfrecon::transport::testing

@@ -10,8 +10,11 @@
 #include <opencv2/core.hpp>
 
 #include "host/capture/manifest.h"
+#include "tests/common/temp_dir.h"
 
 namespace rfrecon::transport::testing {
+
+using rfrecon::testing::TempDir;
 
 struct PlaneScene {
   cv::Size camera_size;
@@ -44,16 +47,5 @@ std::vector<cv::Mat> render_frames(const PlaneScene& scene, const std::vector<ca
 capture::CaptureManifest write_capture(const std::filesystem::path& dir, const PlaneScene& scene,
                                        const std::vector<capture::Pattern>& sequence, int dot_spacing,
                                        const std::vector<cv::Mat>& frames);
-
-// A fresh empty directory under the test temp dir, removed by the caller's TempDir.
-class TempDir {
- public:
-  explicit TempDir(const std::string& name);
-  ~TempDir();
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
 
 }  // namespace rfrecon::transport::testing

@@ -8,7 +8,7 @@
 
 #include "host/capture/protocol.h"
 #include "host/cli/commands.h"
-#include "host/common/errors.h"
+#include "host/core/errors.h"
 #include "host/transport/transport_file.h"
 #include "tests/transport/synthetic_capture.h"
 

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "host/capture/protocol.h"
-#include "host/common/errors.h"
+#include "host/core/errors.h"
 #include "tests/transport/synthetic_capture.h"
 #include "tests/transport/test_capture_feed.h"
 

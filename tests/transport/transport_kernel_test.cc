@@ -7,7 +7,7 @@
 
 #include "host/capture/protocol.h"
 #include "host/cl/device_selection.h"
-#include "host/transport/pipeline.h"
+#include "host/transport/compute_transport.h"
 #include "host/transport/spmv.h"
 #include "tests/transport/synthetic_capture.h"
 #include "tests/transport/test_capture_feed.h"

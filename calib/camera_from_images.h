@@ -1,0 +1,33 @@
+// `rfrecon calibrate-camera` as a library call: a camera alone from checkerboard photographs, with its report.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "calib/camera_calibration.h"
+
+namespace rfrecon::calib {
+
+struct CameraImagesRequest {
+  std::vector<std::filesystem::path> images;
+  BoardSpec board;
+  CalibrationOptions options;
+  std::filesystem::path output;      // camera.yaml (OpenCV FileStorage), written atomically
+  std::filesystem::path report_dir;  // corner images and the error chart, written whole
+};
+
+struct CameraImagesRun {
+  CameraCalibration calibration;
+  std::size_t images = 0;  // given; calibration.view_names are those with the board
+};
+
+// Detects the board in each image (skipping, with a warning, images without it), calibrates, writes the report and
+// then the calibration. Throws InputError naming the file for an unreadable image or one of another size, and
+// ProcessingError (after writing the report, which it names) when too few views remain or the poses are degenerate.
+CameraImagesRun calibrate_camera_from_images(const CameraImagesRequest& request);
+
+// The default report directory of an output file: OUTPUT_STEM_report beside it.
+std::filesystem::path default_report_dir(const std::filesystem::path& output);
+
+}  // namespace rfrecon::calib

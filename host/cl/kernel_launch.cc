@@ -1,0 +1,67 @@
+// Kernel names and sizes of the two entries, and the buffer calls behind the templates of kernel_launch.h.
+#include "host/cl/kernel_launch.h"
+
+#include <algorithm>
+
+namespace rfrecon::cl {
+
+std::string kernel_name(std::string_view base, KernelEntry entry) {
+  return std::string(base) + (entry == KernelEntry::kSingleWorkItem ? "_single" : "_ndrange");
+}
+
+::cl::Kernel make_kernel(const ::cl::Program& program, std::string_view base, KernelEntry entry) {
+  const std::string name = kernel_name(base, entry);
+  cl_int status = CL_SUCCESS;
+  ::cl::Kernel kernel(program, name.c_str(), &status);
+  RF_CL_CHECK_CODE(status, ("clCreateKernel(" + name + ")").c_str());
+  return kernel;
+}
+
+void enqueue_kernel(::cl::CommandQueue& queue, const ::cl::Kernel& kernel, KernelEntry entry, std::size_t items,
+                    const LaunchOptions& options) {
+  ::cl::NDRange global(1);
+  ::cl::NDRange local(1);
+  if (entry == KernelEntry::kNdRange) {
+    const std::size_t group = options.work_group;
+    global = ::cl::NDRange(group == 0 ? items : (items + group - 1) / group * group);
+    local = group == 0 ? ::cl::NullRange : ::cl::NDRange(group);
+  }
+  RF_CL_CHECK(queue.enqueueNDRangeKernel(kernel, ::cl::NullRange, global, local, options.wait, options.done));
+}
+
+namespace detail {
+
+::cl::Buffer create_buffer(const ::cl::Context& context, cl_mem_flags flags, std::size_t bytes, const void* host,
+                           std::size_t min_bytes, const void* fill) {
+  if (bytes == 0) {
+    bytes = min_bytes;
+    host = fill;
+  }
+  if (host != nullptr) flags |= CL_MEM_COPY_HOST_PTR;
+  cl_int status = CL_SUCCESS;
+  ::cl::Buffer buffer(context, flags, bytes, const_cast<void*>(host), &status);
+  RF_CL_CHECK_CODE(status, "clCreateBuffer");
+  return buffer;
+}
+
+void write_bytes(::cl::CommandQueue& queue, const ::cl::Buffer& buffer, const void* data, std::size_t bytes,
+                 bool blocking) {
+  if (bytes > 0) RF_CL_CHECK(queue.enqueueWriteBuffer(buffer, blocking ? CL_TRUE : CL_FALSE, 0, bytes, data));
+}
+
+void read_bytes(::cl::CommandQueue& queue, const ::cl::Buffer& buffer, void* data, std::size_t bytes) {
+  if (bytes > 0) RF_CL_CHECK(queue.enqueueReadBuffer(buffer, CL_TRUE, 0, bytes, data));
+}
+
+}  // namespace detail
+
+::cl::Buffer& GrowingBuffer::at_least(const ::cl::Context& context, std::size_t bytes, cl_mem_flags flags) {
+  bytes = std::max<std::size_t>(bytes, 4);
+  if (bytes > capacity_) {
+    buffer_ = detail::create_buffer(context, flags, bytes, nullptr, 0, nullptr);
+    capacity_ = bytes;
+  }
+  return buffer_;
+}
+
+}  // namespace rfrecon::cl

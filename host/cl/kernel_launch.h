@@ -1,0 +1,101 @@
+// Running a kernel through either entry, and moving host arrays to and from buffers: the one copy of each idiom.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "host/cl/error.h"
+#include "host/cl/kernel_entry.h"
+#include "host/cl/opencl.h"
+
+namespace rfrecon::cl {
+
+// The entry's kernel of a file: "<base>_ndrange" or "<base>_single".
+std::string kernel_name(std::string_view base, KernelEntry entry);
+
+// That kernel of program; throws ClError naming it.
+::cl::Kernel make_kernel(const ::cl::Program& program, std::string_view base, KernelEntry entry);
+
+// Sets all of kernel's arguments, in order from index 0.
+template <typename... Args>
+void set_args(::cl::Kernel& kernel, const Args&... args) {
+  [[maybe_unused]] cl_uint index = 0;
+  (RF_CL_CHECK(kernel.setArg(index++, args)), ...);
+}
+
+struct LaunchOptions {
+  // 0: NDRange(items), work-groups left to the runtime. Otherwise work-groups of this size and the global size
+  // rounded up to a multiple of it (the kernel skips ids >= its item count).
+  std::size_t work_group = 0;
+  const std::vector<::cl::Event>* wait = nullptr;  // run after these events
+  ::cl::Event* done = nullptr;                     // receives the kernel's completion event
+};
+
+// Enqueues kernel for `items` items: one work-item per item (kNdRange) or one work-item in all (kSingleWorkItem,
+// global and local size 1: the kernel loops over the items).
+void enqueue_kernel(::cl::CommandQueue& queue, const ::cl::Kernel& kernel, KernelEntry entry, std::size_t items,
+                    const LaunchOptions& options = {});
+
+namespace detail {
+// bytes == 0 makes a buffer of min_bytes (zero-sized buffers are invalid), copied from fill when it is not null.
+::cl::Buffer create_buffer(const ::cl::Context& context, cl_mem_flags flags, std::size_t bytes, const void* host,
+                           std::size_t min_bytes, const void* fill);
+void write_bytes(::cl::CommandQueue& queue, const ::cl::Buffer& buffer, const void* data, std::size_t bytes,
+                 bool blocking);
+void read_bytes(::cl::CommandQueue& queue, const ::cl::Buffer& buffer, void* data, std::size_t bytes);
+}  // namespace detail
+
+// A buffer of `count` elements of T (at least one), contents undefined.
+template <typename T>
+::cl::Buffer make_buffer(const ::cl::Context& context, std::size_t count, cl_mem_flags flags = CL_MEM_READ_WRITE) {
+  return detail::create_buffer(context, flags, count * sizeof(T), nullptr, sizeof(T), nullptr);
+}
+
+// A new buffer holding a copy of data[0, count) (CL_MEM_COPY_HOST_PTR is added to flags). An empty range gets one
+// zero element, never read by the kernels.
+template <typename T>
+::cl::Buffer upload(const ::cl::Context& context, const T* data, std::size_t count,
+                    cl_mem_flags flags = CL_MEM_READ_ONLY) {
+  const T zero{};
+  return detail::create_buffer(context, flags, count * sizeof(T), data, sizeof(T), &zero);
+}
+template <typename T>
+::cl::Buffer upload(const ::cl::Context& context, const std::vector<T>& host, cl_mem_flags flags = CL_MEM_READ_ONLY) {
+  return upload(context, host.data(), host.size(), flags);
+}
+
+// Writes data[0, count) to the start of buffer; nothing for count 0. A non-blocking write reads data later: keep
+// it alive until the queue has run the write.
+template <typename T>
+void write_buffer(::cl::CommandQueue& queue, const ::cl::Buffer& buffer, const T* data, std::size_t count,
+                  bool blocking = true) {
+  detail::write_bytes(queue, buffer, data, count * sizeof(T), blocking);
+}
+
+// Blocking reads of the first `count` elements of buffer: into data, or into a new vector.
+template <typename T>
+void read_buffer(::cl::CommandQueue& queue, const ::cl::Buffer& buffer, T* data, std::size_t count) {
+  detail::read_bytes(queue, buffer, data, count * sizeof(T));
+}
+template <typename T>
+std::vector<T> download(::cl::CommandQueue& queue, const ::cl::Buffer& buffer, std::size_t count) {
+  std::vector<T> host(count);
+  read_buffer(queue, buffer, host.data(), count);
+  return host;
+}
+
+// A buffer reused for inputs of varying size (tiles): reallocated only when a larger one is asked for.
+class GrowingBuffer {
+ public:
+  // The buffer, at least `bytes` (and 4) bytes large; flags apply when it is reallocated.
+  ::cl::Buffer& at_least(const ::cl::Context& context, std::size_t bytes, cl_mem_flags flags);
+  const ::cl::Buffer& buffer() const { return buffer_; }
+
+ private:
+  ::cl::Buffer buffer_;
+  std::size_t capacity_ = 0;
+};
+
+}  // namespace rfrecon::cl

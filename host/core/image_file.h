@@ -1,0 +1,23 @@
+// Image files through OpenCV with rfrecon's rules: float TIFFs uncompressed, type-checked reads that name the file.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+namespace rfrecon {
+
+// "WxH", as messages and options write image sizes.
+std::string size_text(cv::Size size);
+
+// cv::imwrite by extension; float images go to TIFF uncompressed (OpenCV 4.6 corrupts multi-channel float TIFFs
+// with its default LZW). Not atomic by itself: write into a StagingDirectory or AtomicFile temporary. Throws
+// std::runtime_error naming the file when it cannot be written.
+void write_image(const std::filesystem::path& file, const cv::Mat& image);
+
+// Reads `file` unchanged and checks that it holds `type` (e.g. CV_32FC3). Throws InputError naming the file when
+// it is missing, cannot be decoded or has another type.
+cv::Mat read_image(const std::filesystem::path& file, int type);
+
+}  // namespace rfrecon

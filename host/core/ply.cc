@@ -1,0 +1,73 @@
+// Binary little-endian PLY writer: header text, then each vertex's floats as little-endian bytes.
+#include "host/core/ply.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+
+#include "host/core/atomic_file.h"
+
+namespace rfrecon {
+
+namespace {
+void append_little_endian(std::string& bytes, float value) {
+  std::uint32_t bits = 0;
+  std::memcpy(&bits, &value, sizeof bits);
+  for (int shift = 0; shift < 32; shift += 8) bytes.push_back(static_cast<char>((bits >> shift) & 0xffu));
+}
+
+void check_map(const cv::Mat& map, int type, cv::Size size, const std::string& what) {
+  if (map.type() != type || map.size() != size) {
+    throw std::invalid_argument("write_point_cloud_ply: " + what + " must be " + cv::typeToString(type) + " of " +
+                                std::to_string(size.width) + "x" + std::to_string(size.height));
+  }
+}
+
+bool is_property_name(const std::string& name) {
+  if (name.empty()) return false;
+  for (const char c : name) {
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+  }
+  return name != "x" && name != "y" && name != "z" && name != "nx" && name != "ny" && name != "nz";
+}
+}  // namespace
+
+void write_point_cloud_ply(const std::filesystem::path& file, const std::string& comment, const cv::Mat& points,
+                           const cv::Mat& normals, const std::vector<PlyScalarMap>& scalars) {
+  check_map(points, CV_32FC3, points.size(), "points");
+  check_map(normals, CV_32FC3, points.size(), "normals");
+  for (const auto& scalar : scalars) {
+    if (!is_property_name(scalar.name)) {
+      throw std::invalid_argument("write_point_cloud_ply: bad property name '" + scalar.name + "'");
+    }
+    check_map(scalar.values, CV_32F, points.size(), "property '" + scalar.name + "'");
+  }
+  if (comment.find_first_of("\r\n") != std::string::npos) {
+    throw std::invalid_argument("write_point_cloud_ply: the comment must be one line");
+  }
+
+  std::string body;
+  std::size_t count = 0;
+  for (int y = 0; y < points.rows; ++y) {
+    for (int x = 0; x < points.cols; ++x) {
+      const cv::Vec3f& p = points.at<cv::Vec3f>(y, x);
+      if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) continue;
+      const cv::Vec3f& n = normals.at<cv::Vec3f>(y, x);
+      for (const float value : {p[0], p[1], p[2], n[0], n[1], n[2]}) append_little_endian(body, value);
+      for (const auto& scalar : scalars) append_little_endian(body, scalar.values.at<float>(y, x));
+      ++count;
+    }
+  }
+
+  std::string header = "ply\nformat binary_little_endian 1.0\n";
+  if (!comment.empty()) header += "comment " + comment + "\n";
+  header += "element vertex " + std::to_string(count) + "\n";
+  for (const char* name : {"x", "y", "z", "nx", "ny", "nz"}) header += std::string("property float ") + name + "\n";
+  for (const auto& scalar : scalars) header += "property float " + scalar.name + "\n";
+  header += "end_header\n";
+  write_file_atomically(file, header + body);
+}
+
+}  // namespace rfrecon

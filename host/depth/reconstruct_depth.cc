@@ -1,0 +1,158 @@
+// Orchestration of the depth stage: triangulation, rectification, segmentation, row solvers, back to the camera.
+#include "host/depth/reconstruct_depth.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <spdlog/spdlog.h>
+
+#include "host/core/errors.h"
+#include "host/core/stage_clock.h"
+#include "host/depth/camera_grid.h"
+#include "host/sched/scheduler.h"
+#include "host/transport/spmv.h"
+#include "host/transport/spmv_on_devices.h"
+
+namespace rfrecon::depth {
+
+namespace {
+
+constexpr const char* kMethodNames[] = {"triangulate", "integrate", "fused"};
+
+// Gaussian agreement weight exp(-d^2 / 2 s^2), 0 where d is NaN.
+float agreement(float difference, float sigma) {
+  return std::isnan(difference) ? 0.0f : std::exp(-0.5f * (difference / sigma) * (difference / sigma));
+}
+
+// Triangulation: how close the correspondence lies to its rectified row (0.5 px scale). Row solvers: how well the
+// result agrees with the triangulated depth, in units of three times its expected noise.
+void fill_confidence(outputs::Reconstruction& maps, const cv::Mat& z_rect_mm,
+                     const CameraGridTriangulation& triangulation, const RfRectifiedRig& rig,
+                     const DepthOptions& options) {
+  const float depth_noise_scale = options.fusion.sigma_disparity_px / (rig.f * std::abs(rig.b));
+  for (int y = 0; y < maps.depth_mm.rows; ++y) {
+    for (int x = 0; x < maps.depth_mm.cols; ++x) {
+      const float z = z_rect_mm.at<float>(y, x);
+      if (!(z > 0.0f)) continue;
+      float confidence = agreement(triangulation.epipolar_px.at<float>(y, x), 0.5f);
+      if (options.method != Method::kTriangulate) {
+        confidence *= agreement(z - triangulation.z_rect_mm.at<float>(y, x), 3.0f * z * z * depth_noise_scale);
+      }
+      maps.confidence.at<float>(y, x) = confidence;
+    }
+  }
+}
+
+}  // namespace
+
+std::string method_name(Method method) { return kMethodNames[static_cast<int>(method)]; }
+
+Method parse_method(const std::string& name) {
+  for (int i = 0; i < 3; ++i) {
+    if (name == kMethodNames[i]) return static_cast<Method>(i);
+  }
+  throw InputError("unknown depth method '" + name + "' (triangulate, integrate or fused)");
+}
+
+DepthRun reconstruct_depth(const transport::CompressedTransport& transport, const calib::StereoRig& rig,
+                           const std::string& rig_name, const DepthOptions& options,
+                           std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
+  if (devices.empty()) throw std::invalid_argument("reconstruct_depth: no device");
+  DepthRun run;
+  nlohmann::json& summary = run.summary;
+  summary["method"] = method_name(options.method);
+  summary["camera_size"] = {transport.setup.camera_size.width, transport.setup.camera_size.height};
+  summary["projector_size"] = {transport.setup.projector_size.width, transport.setup.projector_size.height};
+  StageClock clock;
+
+  const Rectification rectification = depth_rectification(rig, rig_name);
+  const RfRectifiedRig& rectified = rectification.rig;
+  summary["rectified"] = {{"f_px", rectified.f},
+                          {"cx_camera_px", rectified.cx_cam},
+                          {"cx_projector_px", rectified.cx_proj},
+                          {"cy_px", rectified.cy},
+                          {"baseline_mm", rectified.b},
+                          {"camera_size", {rectification.camera_size.width, rectification.camera_size.height}},
+                          {"projector_width", rectification.projector_width}};
+  const CameraGridTriangulation triangulation =
+      triangulate_camera_grid(transport, rig, rectification, options.rectification);
+  summary["correspondences"] = triangulation.correspondences;
+  summary["off_epipolar"] = triangulation.off_epipolar;
+  summary["boundary_pixels"] = triangulation.boundary_pixels;
+  clock.lap("triangulate");
+  if (triangulation.correspondences - triangulation.off_epipolar == 0) {
+    throw ProcessingError("nothing to reconstruct: no camera pixel has a correspondence on its epipolar line (" +
+                          std::to_string(triangulation.correspondences) + " correspondences, all off by more than " +
+                          std::to_string(options.rectification.epipolar_tolerance_px) + " px: is " + rig_name +
+                          " the calibration of this capture?)");
+  }
+
+  cv::Mat z_rect_grid = triangulation.z_rect_mm;
+  if (options.method != Method::kTriangulate) {
+    std::vector<sched::RunReport> reports;
+    auto primal = transport::primal_on_devices(devices, programs, options.entry, transport,
+                                               std::vector<float>(transport.projector_pixels(), 1.0f));
+    auto dual = transport::dual_on_devices(devices, programs, options.entry, transport::transpose(transport),
+                                           std::vector<float>(transport.camera_pixels(), 1.0f));
+    reports.push_back(primal.report);
+    reports.push_back(dual.report);
+    clock.lap("primal and dual images");
+    RectifiedRows rows =
+        rectify_rows(transport, primal.image, dual.image, rig, rectification, triangulation, options.rectification);
+    clock.lap("rectify");
+    const SegmentationStats segments = segment_rows(rows, options.segmentation);
+    summary["segmentation"] = {{"usable_pixels", segments.usable},
+                               {"runs", segments.runs},
+                               {"jumps", segments.jumps},
+                               {"creases", segments.creases},
+                               {"ode_breakdowns", segments.ode_breakdowns}};
+    clock.lap("segment");
+    if (segments.usable == 0) {
+      throw ProcessingError(
+          "nothing to integrate: every rectified pixel is masked (no primal signal, no dual "
+          "signal or no triangulated depth)");
+    }
+    // Rows are independent: the scheduler cuts them into tiles over the devices; each tile's depths go to its own
+    // rows of z_rect, so the result does not depend on the split.
+    std::vector<float> z_rect(rows.pixels());
+    const auto solve_rows = [&](const std::string& stage, const auto& solve) {
+      sched::Options tiles;
+      tiles.stage = stage;
+      reports.push_back(sched::run_tiles(
+          devices, static_cast<std::size_t>(rows.height),
+          [&](sched::Worker& worker, const sched::Tile& tile) {
+            const int first = static_cast<int>(tile.begin), end = static_cast<int>(tile.end);
+            const auto z = solve(worker.device(), first, end);
+            std::copy(z.begin(), z.end(), z_rect.begin() + static_cast<std::ptrdiff_t>(first) * rows.width);
+          },
+          tiles));
+      clock.lap(stage);
+    };
+    solve_rows("integrate", [&](cl::DeviceContext& device, int first, int end) {
+      return integrate_rows_opencl(device, programs, options.entry, rows, options.integration, first, end);
+    });
+    if (options.method == Method::kFused) {
+      const std::vector<float> z_integrated = z_rect;
+      solve_rows("fuse", [&](cl::DeviceContext& device, int first, int end) {
+        const auto begin = z_integrated.begin() + static_cast<std::ptrdiff_t>(first) * rows.width;
+        const std::vector<float> start(begin, begin + static_cast<std::ptrdiff_t>(end - first) * rows.width);
+        return fuse_rows_opencl(device, programs, options.entry, rows, start, options.fusion, first, end);
+      });
+    }
+    summary["scheduler"] = reports;
+    sched::log_reports(reports);
+    z_rect_grid = sample_rectified_depth(z_rect, rows, triangulation.rect_cam, options.segmentation.jump_relative);
+  }
+  run.maps = camera_frame_maps(z_rect_grid, triangulation.rect_cam, rectified, rig.R1);
+  fill_confidence(run.maps, z_rect_grid, triangulation, rectified, options);
+  clock.lap("camera grid");
+  summary["timings"] = clock.timings();
+  const int reconstructed = cv::countNonZero(run.maps.depth_mm == run.maps.depth_mm);
+  summary["reconstructed_pixels"] = reconstructed;
+  summary["devices"] = nlohmann::json::array();
+  for (const auto& device : devices) summary["devices"].push_back(device.info().device_name);
+  if (reconstructed == 0) throw ProcessingError("nothing reconstructed: every pixel was masked");
+  return run;
+}
+
+}  // namespace rfrecon::depth

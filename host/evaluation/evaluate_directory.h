@@ -1,0 +1,29 @@
+// `rfrecon evaluate` as a library call: a reconstruction directory against a truth folder, report and error map.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "host/evaluation/evaluation.h"
+
+namespace rfrecon::evaluation {
+
+struct EvaluationRequest {
+  std::filesystem::path reconstruction_dir;  // written by outputs::write_reconstruction
+  std::filesystem::path truth_dir;           // truth::read_truth
+  std::string object;                        // empty: the first object
+  std::filesystem::path report;              // default: reconstruction_dir / evaluation.json
+  std::filesystem::path error_map;           // default: reconstruction_dir / error_map.png
+};
+
+struct EvaluationRun {
+  Evaluation evaluation;
+  std::filesystem::path report;
+  std::filesystem::path error_map;
+};
+
+// Reads both, evaluates and writes the report and the error map (each atomically). Throws InputError naming the file
+// for a missing or mis-sized map, ProcessingError when the object is not visible.
+EvaluationRun evaluate_directory(const EvaluationRequest& request);
+
+}  // namespace rfrecon::evaluation

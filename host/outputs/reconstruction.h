@@ -1,0 +1,16 @@
+// A reconstruction on the camera's pixel grid: what `rfrecon reconstruct` computes and writes, and `evaluate` reads.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+namespace rfrecon::outputs {
+
+// All maps have the (unrectified) camera's size; values are in the camera frame, millimetres.
+struct Reconstruction {
+  cv::Mat depth_mm;    // CV_32F: z of the surface point seen at the pixel centre, NaN where none
+  cv::Mat points_mm;   // CV_32FC3: X_cam of that point, NaN where none
+  cv::Mat normals;     // CV_32FC3: unit normal facing the camera, NaN where none
+  cv::Mat confidence;  // CV_32F in [0, 1]: 0 where none, higher is more trusted
+};
+
+}  // namespace rfrecon::outputs

@@ -1,0 +1,89 @@
+// The calibrate loop over poses: transport views, corners, stereo calibration, report, rig file.
+#include "host/pipeline/calibrate_rig.h"
+
+#include <algorithm>
+
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "calib/pose_observation.h"
+#include "calib/report.h"
+#include "host/core/atomic_file.h"
+#include "host/core/errors.h"
+#include "host/core/image_file.h"
+#include "host/core/progress.h"
+
+namespace rfrecon::pipeline {
+
+namespace fs = std::filesystem;
+
+namespace {
+// Adds each stage report of one pose to the stage of the same name in `total`.
+void merge_stages(std::vector<sched::RunReport>& total, const std::vector<sched::RunReport>& pose) {
+  for (const auto& stage : pose) {
+    const auto same = std::find_if(total.begin(), total.end(),
+                                   [&](const sched::RunReport& existing) { return existing.stage == stage.stage; });
+    if (same == total.end()) {
+      total.push_back(stage);
+    } else {
+      same->merge(stage);
+    }
+  }
+}
+
+std::string pose_name(const fs::path& pose_dir) {
+  return pose_dir.filename().empty() ? pose_dir.parent_path().filename().string() : pose_dir.filename().string();
+}
+}  // namespace
+
+RigCalibrationRun calibrate_rig(const RigCalibrationRequest& request, std::vector<cl::DeviceContext>& devices,
+                                cl::ProgramCache& programs) {
+  RigCalibrationRun run;
+  run.poses = request.pose_dirs.size();
+  StagingDirectory report(request.report_dir, true);
+  std::vector<calib::StereoView> views;
+  cv::Size camera_size;
+  cv::Size projector_size;
+  Progress progress("calibrate", request.pose_dirs.size(), "poses");
+  for (const auto& pose_dir : request.pose_dirs) {
+    const auto captured = transport::view_capture(pose_dir, request.source, devices, programs);
+    merge_stages(run.schedule, captured.schedule);
+    const auto pose = calib::observe_board(pose_name(pose_dir), captured.camera_image, captured.dual_image,
+                                           captured.dual_reached, captured.correspondence, request.board);
+    if (camera_size.empty()) {
+      camera_size = pose.camera_image.size();
+      projector_size = pose.dual_image.size();
+    }
+    if (pose.camera_image.size() != camera_size || pose.dual_image.size() != projector_size) {
+      throw InputError(pose_dir.string() + ": camera or projector size differs from the first pose's (mixed captures)");
+    }
+    write_image(report.path() / ("camera_" + pose.name + ".png"),
+                calib::draw_corners(pose.camera_image, request.board, pose.camera_corners));
+    write_image(report.path() / ("dual_" + pose.name + ".png"),
+                calib::draw_corners(pose.dual_image, request.board, pose.projector_corners));
+    if (pose.usable()) {
+      views.push_back({pose.name, pose.camera_corners, pose.projector_corners});
+      run.view_names.push_back(pose.name);
+    } else {
+      spdlog::warn("{}: {}; pose skipped", pose_dir.string(), pose.problem);
+    }
+    progress.advance();
+  }
+  run.calibration = calib::keeping_report(report, [&] {
+    if (views.empty()) {
+      throw ProcessingError("the board (" + std::to_string(request.board.cols) + "x" +
+                            std::to_string(request.board.rows) + ") was found in none of the " +
+                            std::to_string(request.pose_dirs.size()) + " poses");
+    }
+    return calib::calibrate_stereo(views, request.board, camera_size, projector_size, request.options);
+  });
+  write_image(report.path() / "errors.png", calib::draw_error_chart(run.view_names, {"camera", "projector"},
+                                                                    {run.calibration.per_view_camera_errors,
+                                                                     run.calibration.per_view_projector_errors}));
+  write_file_atomically(report.path() / "schedule.json", nlohmann::json(run.schedule).dump(2) + "\n");
+  calib::write_rig(run.calibration.rig, request.output);
+  report.commit();
+  return run;
+}
+
+}  // namespace rfrecon::pipeline

@@ -1,0 +1,38 @@
+// `rfrecon calibrate` as a library call: camera and projector from one capture per board pose (dual photography),
+// their stereo pose and rectification, with the visual report.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "calib/stereo_calibration.h"
+#include "host/sched/report.h"
+#include "host/transport/capture_views.h"
+
+namespace rfrecon::pipeline {
+
+struct RigCalibrationRequest {
+  std::vector<std::filesystem::path> pose_dirs;  // one capture directory per board pose
+  transport::CaptureSource source;
+  calib::BoardSpec board;
+  calib::CalibrationOptions options;
+  std::filesystem::path output;      // rig.yaml, written atomically
+  std::filesystem::path report_dir;  // camera and dual images with corners, error chart, schedule.json; written whole
+};
+
+struct RigCalibrationRun {
+  calib::StereoCalibration calibration;
+  std::vector<std::string> view_names;     // the poses used, in order of the per-view errors
+  std::size_t poses = 0;                   // given
+  std::vector<sched::RunReport> schedule;  // per stage, summed over the poses
+};
+
+// For each pose: T and T^T 1 on `devices`, corners in both images (a pose without the board is skipped with a
+// warning); then calibrates, writes the report and then rig.yaml. Throws InputError for a bad capture or mixed
+// sizes (naming the pose), ProcessingError (after writing the report, which it names) when no pose or too few remain
+// or the poses are degenerate: no rig.yaml is written then.
+RigCalibrationRun calibrate_rig(const RigCalibrationRequest& request, std::vector<cl::DeviceContext>& devices,
+                                cl::ProgramCache& programs);
+
+}  // namespace rfrecon::pipeline

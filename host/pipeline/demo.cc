@@ -1,0 +1,99 @@
+// The demo: simulate, calibrate, transport, reconstruct and evaluate, composed from the library's calls.
+#include "host/pipeline/demo.h"
+
+#include <chrono>
+
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "calib/camera_from_images.h"
+#include "host/core/atomic_file.h"
+#include "host/evaluation/evaluate_directory.h"
+#include "host/pipeline/calibrate_rig.h"
+#include "host/pipeline/reconstruct_scan.h"
+#include "host/pipeline/transport_capture.h"
+#include "sim/builtin_scenes.h"
+#include "sim/simulate.h"
+
+namespace rfrecon::pipeline {
+
+namespace fs = std::filesystem;
+
+namespace {
+constexpr const char* kPosesScene = "checkerboard-poses";
+constexpr const char* kObjectScene = "cube-anisotropic";
+
+void render(const std::string& scene, const fs::path& out_dir) {
+  spdlog::info("demo: render {} into {}", scene, out_dir.string());
+  sim::simulate(sim::resolve_scene(scene), out_dir, {0, true});
+}
+
+std::vector<fs::path> pose_dirs(const fs::path& rendering) {
+  std::vector<fs::path> dirs;
+  for (int pose = 0;; ++pose) {
+    const fs::path dir = rendering / "capture" / fmt::format("pose_{:02d}", pose);
+    if (!fs::exists(dir)) break;
+    dirs.push_back(dir);
+  }
+  return dirs;
+}
+}  // namespace
+
+DemoRun run_demo(const fs::path& out_dir, std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
+  const auto start = std::chrono::steady_clock::now();
+  DemoRun demo;
+  demo.scene = kObjectScene;
+  demo.out_dir = out_dir;
+  const fs::path poses = out_dir / kPosesScene, cube = out_dir / kObjectScene;
+
+  render(kPosesScene, poses);
+  RigCalibrationRequest calibration;
+  calibration.pose_dirs = pose_dirs(poses);
+  calibration.board = {9, 6, 30.0};
+  calibration.output = out_dir / "rig.yaml";
+  calibration.report_dir = calib::default_report_dir(calibration.output);
+  spdlog::info("demo: calibrate camera and projector from {} poses", calibration.pose_dirs.size());
+  const auto rig = calibrate_rig(calibration, devices, programs);
+  spdlog::info("demo: stereo reprojection RMS {:.4f} px over {} poses", rig.calibration.rig.rms, rig.view_names.size());
+
+  render(kObjectScene, cube);
+  TransportRequest transport;
+  transport.capture_dir = cube / "capture";
+  transport.output = cube / "T.h5";
+  spdlog::info("demo: light transport of {}", transport.capture_dir.string());
+  transport_capture(transport, devices, programs);
+
+  nlohmann::json table = nlohmann::json::array();
+  for (const auto method : {depth::Method::kTriangulate, depth::Method::kIntegrate, depth::Method::kFused}) {
+    ReconstructRequest reconstruct;
+    reconstruct.transport = transport.output;
+    reconstruct.rig = calibration.output;
+    reconstruct.depth.method = method;
+    reconstruct.out_dir = out_dir / depth::method_name(method);
+    reconstruct.force = true;
+    spdlog::info("demo: reconstruct ({})", depth::method_name(method));
+    reconstruct_scan(reconstruct, devices, programs);
+    const auto evaluated = evaluation::evaluate_directory({reconstruct.out_dir, cube, "", {}, {}});
+    const auto& e = evaluated.evaluation;
+    demo.object_size_mm = e.object_size_mm;
+    DemoRow row{depth::method_name(method), e.object.rms_mm,     100.0 * e.object.rms_mm / e.object_size_mm,
+                e.object.mean_abs_mm,       e.object.max_abs_mm, e.object.coverage_percent};
+    demo.methods.push_back(row);
+    table.push_back({{"method", row.method},
+                     {"rms_mm", row.rms_mm},
+                     {"rms_percent", row.rms_percent},
+                     {"mean_abs_mm", row.mean_abs_mm},
+                     {"max_abs_mm", row.max_abs_mm},
+                     {"coverage_percent", row.coverage_percent},
+                     {"object_size_mm", e.object_size_mm}});
+  }
+  demo.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_file_atomically(out_dir / "demo.json", nlohmann::json{{"scene", demo.scene},
+                                                              {"calibration", calibration.output.string()},
+                                                              {"seconds", demo.seconds},
+                                                              {"methods", table}}
+                                                   .dump(2));
+  return demo;
+}
+
+}  // namespace rfrecon::pipeline

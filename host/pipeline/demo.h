@@ -1,0 +1,37 @@
+// `rfrecon demo` as a library call: the whole pipeline on the synthetic rig. Renders the checkerboard poses and the
+// anisotropic cube, builds T, calibrates from the poses (not from the true rig), reconstructs with the three methods
+// and evaluates each against the truth.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "host/cl/device_context.h"
+#include "host/cl/program_cache.h"
+
+namespace rfrecon::pipeline {
+
+struct DemoRow {
+  std::string method;
+  double rms_mm = 0.0;
+  double rms_percent = 0.0;  // of the object's size
+  double mean_abs_mm = 0.0;
+  double max_abs_mm = 0.0;
+  double coverage_percent = 0.0;
+};
+
+struct DemoRun {
+  std::string scene;
+  double object_size_mm = 0.0;
+  std::vector<DemoRow> methods;  // triangulate, integrate, fused
+  double seconds = 0.0;
+  std::filesystem::path out_dir;
+};
+
+// Writes OUT/checkerboard-poses/, OUT/rig.yaml (+ report), OUT/cube-anisotropic/ (with T.h5), OUT/METHOD/ per method
+// (with evaluation.json and error_map.png) and OUT/demo.json; each replaces an earlier demo's.
+DemoRun run_demo(const std::filesystem::path& out_dir, std::vector<cl::DeviceContext>& devices,
+                 cl::ProgramCache& programs);
+
+}  // namespace rfrecon::pipeline

@@ -1,0 +1,72 @@
+// T.h5 to a primal or dual image file.
+#include "host/pipeline/dual_image.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "host/core/atomic_file.h"
+#include "host/core/errors.h"
+#include "host/core/percentile.h"
+#include "host/core/stage_clock.h"
+#include "host/transport/spmv.h"
+#include "host/transport/transport_file.h"
+
+namespace rfrecon::pipeline {
+
+namespace {
+// .tif/.tiff: 32-bit float. Otherwise 16-bit with `white` (the 99.9th percentile) mapped to 65535.
+std::vector<unsigned char> encode(const cv::Mat& image, const std::filesystem::path& output, float& white) {
+  std::string extension = output.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
+  std::vector<unsigned char> bytes;
+  if (extension == ".tif" || extension == ".tiff") {
+    cv::imencode(".tiff", image, bytes);
+    return bytes;
+  }
+  const float percentile = finite_percentile(image, 0.999);
+  white = std::isnan(percentile) ? 1.0f : std::max(percentile, 1e-12f);
+  cv::Mat scaled;
+  image.convertTo(scaled, CV_16U, 65535.0 / white);
+  if (!cv::imencode(extension.empty() ? ".png" : extension, scaled, bytes)) {
+    throw InputError(output.string() + ": cannot encode an image with extension '" + extension + "'");
+  }
+  return bytes;
+}
+}  // namespace
+
+DualImageRun dual_image(const DualImageRequest& request, std::vector<cl::DeviceContext>& devices,
+                        cl::ProgramCache& programs) {
+  const auto transport = transport::read_transport(request.transport);
+  const auto entry = transport::KernelEntry::kNdRange;
+  DualImageRun run;
+  StageClock clock;
+  clock.time("kernels", [&] {
+    if (request.primal) {
+      run.size = transport.setup.camera_size;
+      run.product = transport::primal_on_devices(devices, programs, entry, transport,
+                                                 std::vector<float>(transport.projector_pixels(), 1.0f));
+    } else {
+      run.size = transport.setup.projector_size;
+      run.product = transport::dual_on_devices(devices, programs, entry, transport::transpose(transport),
+                                               std::vector<float>(transport.camera_pixels(), 1.0f));
+    }
+  });
+  run.seconds = clock.total_seconds();
+  const cv::Mat image(run.size, CV_32F, run.product.image.data());
+  const auto bytes = encode(image, request.output, run.white);
+  write_file_atomically(request.output, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  if (!request.summary.empty()) {
+    const nlohmann::json summary = {{"command", request.primal ? "primal" : "dual"},
+                                    {"output", request.output.string()},
+                                    {"kernel_seconds", run.seconds},
+                                    {"schedule", nlohmann::json::array({run.product.report})}};
+    write_file_atomically(request.summary, summary.dump(2) + "\n");
+  }
+  return run;
+}
+
+}  // namespace rfrecon::pipeline

@@ -1,0 +1,27 @@
+// Reads T and the rig, runs the depth stage, writes the output directory.
+#include "host/pipeline/reconstruct_scan.h"
+
+#include <spdlog/spdlog.h>
+
+#include "calib/rig.h"
+#include "host/outputs/reconstruction_files.h"
+#include "host/transport/transport_file.h"
+
+namespace rfrecon::pipeline {
+
+ReconstructRun reconstruct_scan(const ReconstructRequest& request, std::vector<cl::DeviceContext>& devices,
+                                cl::ProgramCache& programs) {
+  const auto transport = transport::read_transport(request.transport);
+  const auto rig = calib::read_rig(request.rig);
+  spdlog::info("reconstruct: {} from {} with {} on {}", depth::method_name(request.depth.method),
+               request.transport.string(), request.rig.string(), cl::describe(devices.front().info()));
+  ReconstructRun run;
+  run.camera_pixels = transport.setup.camera_size.area();
+  run.depth = depth::reconstruct_depth(transport, rig, request.rig.string(), request.depth, devices, programs);
+  run.depth.summary["transport_file"] = request.transport.string();
+  run.depth.summary["calibration_file"] = request.rig.string();
+  outputs::write_reconstruction(run.depth.maps, run.depth.summary, request.out_dir, request.force);
+  return run;
+}
+
+}  // namespace rfrecon::pipeline

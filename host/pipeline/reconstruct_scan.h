@@ -1,0 +1,29 @@
+// `rfrecon reconstruct` as a library call: T.h5 and rig.yaml to a reconstruction directory.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "host/depth/reconstruct_depth.h"
+
+namespace rfrecon::pipeline {
+
+struct ReconstructRequest {
+  std::filesystem::path transport;  // T.h5
+  std::filesystem::path rig;        // rig.yaml
+  depth::DepthOptions depth;
+  std::filesystem::path out_dir;  // written whole (outputs::write_reconstruction)
+  bool force = false;             // replace an existing out_dir
+};
+
+struct ReconstructRun {
+  depth::DepthRun depth;  // summary with transport_file and calibration_file added
+  int camera_pixels = 0;
+};
+
+// Throws InputError naming the file (bad T.h5 or rig, sizes that differ, a rig that cannot be rectified, an
+// existing out_dir without force) and ProcessingError when nothing can be reconstructed; out_dir is then untouched.
+ReconstructRun reconstruct_scan(const ReconstructRequest& request, std::vector<cl::DeviceContext>& devices,
+                                cl::ProgramCache& programs);
+
+}  // namespace rfrecon::pipeline

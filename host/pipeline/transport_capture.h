@@ -1,0 +1,32 @@
+// `rfrecon transport` as a library call: a capture directory to T.h5, with stage timings and per-device shares.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "host/transport/capture_views.h"
+#include "host/transport/compute_transport.h"
+
+namespace rfrecon::pipeline {
+
+struct TransportRequest {
+  std::filesystem::path capture_dir;
+  transport::CaptureSource source;
+  transport::TransportSetup setup;  // K and thresholds
+  transport::KernelEntry entry = transport::KernelEntry::kNdRange;
+  std::filesystem::path output;   // T.h5, written atomically
+  std::filesystem::path summary;  // optional JSON of timings and shares
+};
+
+struct TransportFileRun {
+  transport::TransportRun run;  // timings include "write T.h5"
+  std::size_t decoded_pixels = 0;
+  double total_seconds = 0.0;
+};
+
+// Decodes and compresses the capture on `devices` and writes T.h5 (and the summary). Throws InputError for a bad
+// capture (naming the file) and sched::AllDevicesFailed when no device is left.
+TransportFileRun transport_capture(const TransportRequest& request, std::vector<cl::DeviceContext>& devices,
+                                   cl::ProgramCache& programs);
+
+}  // namespace rfrecon::pipeline

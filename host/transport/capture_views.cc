@@ -1,0 +1,42 @@
+// T, T^T 1 and the white frame of one capture.
+#include "host/transport/capture_views.h"
+
+#include "host/capture/manifest.h"
+#include "host/transport/compute_transport.h"
+#include "host/transport/spmv.h"
+#include "host/transport/spmv_on_devices.h"
+
+namespace rfrecon::transport {
+
+CaptureViews view_capture(const std::filesystem::path& capture_dir, const CaptureSource& source,
+                          std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
+  CaptureViews views;
+  const auto manifest = open_capture(capture_dir, source.layout, source.projector_size);
+  TransportSetup setup;
+  setup.entries_per_pixel = 8;
+  const auto run = compute_transport_on_devices(capture_dir, manifest, setup, devices, programs, KernelEntry::kNdRange);
+  views.schedule = run.schedule;
+  const auto& transport = run.transport;
+
+  for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
+    if (manifest.frames[i].pattern.kind == capture::PatternKind::kWhite) {
+      auto with_size = manifest;
+      with_size.camera_size = transport.setup.camera_size;
+      views.camera_image = capture::load_frame(capture_dir, with_size, i);
+    }
+  }
+  const std::vector<float> ones(transport.camera_pixels(), 1.0f);
+  const auto transposed = transpose(transport);
+  auto product = dual_on_devices(devices, programs, KernelEntry::kNdRange, transposed, ones);
+  views.schedule.push_back(product.report);
+  views.dual_image = cv::Mat(transport.setup.projector_size, CV_32F, product.image.data()).clone();
+  views.dual_reached = cv::Mat(transport.setup.projector_size, CV_8U);
+  for (int q = 0; q < static_cast<int>(views.dual_reached.total()); ++q) {
+    views.dual_reached.data[q] = transposed.row_start[q + 1] > transposed.row_start[q] ? 255 : 0;
+  }
+  views.correspondence =
+      cv::Mat(transport.setup.camera_size, CV_32FC2, const_cast<float*>(transport.correspondence.data())).clone();
+  return views;
+}
+
+}  // namespace rfrecon::transport

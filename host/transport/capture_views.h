@@ -1,0 +1,37 @@
+// What calibration needs of one board pose's capture: the camera's white frame, the dual image T^T 1 seen from the
+// projector (paper section 3, after Sen et al.'s dual photography) and the decoded correspondences.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "host/cl/device_context.h"
+#include "host/cl/program_cache.h"
+#include "host/sched/report.h"
+#include "host/transport/transport_types.h"
+
+namespace rfrecon::transport {
+
+// How a capture directory is laid out (open_capture).
+struct CaptureSource {
+  std::string layout;       // "" or "manifest" (manifest.json), or "opencv-graycode"
+  cv::Size projector_size;  // needed for opencv-graycode
+};
+
+struct CaptureViews {
+  cv::Mat camera_image;                    // CV_32F linear white frame (camera size)
+  cv::Mat dual_image;                      // CV_32F T^T 1 (projector size)
+  cv::Mat dual_reached;                    // CV_8U: 255 where T has an entry for the projector pixel
+  cv::Mat correspondence;                  // CV_32FC2: camera pixel -> projector (x, y), NaN where unknown
+  std::vector<sched::RunReport> schedule;  // the transport and dual stages per device
+};
+
+// Builds T for the capture in `capture_dir` on `devices` (K = 8, default thresholds), forms T^T 1 and reads the white
+// frame. Input errors (missing frames, bad manifest) throw InputError.
+CaptureViews view_capture(const std::filesystem::path& capture_dir, const CaptureSource& source,
+                          std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs);
+
+}  // namespace rfrecon::transport

@@ -1,0 +1,298 @@
+// Streaming of capture frames through the decode and compression accumulators, with progress and timings.
+#include "host/transport/compute_transport.h"
+
+#include <chrono>
+#include <future>
+#include <map>
+#include <utility>
+
+#include "host/core/errors.h"
+#include "host/core/progress.h"
+#include "host/core/stage_clock.h"
+#include "host/sched/block_runner.h"
+
+namespace rfrecon::transport {
+
+namespace fs = std::filesystem;
+using capture::PatternKind;
+
+capture::CaptureManifest open_capture(const fs::path& capture_dir, const std::string& layout, cv::Size projector_size) {
+  if (layout.empty() || layout == "manifest") return capture::read_manifest(capture_dir);
+  if (layout != "opencv-graycode") {
+    throw InputError("unknown capture layout '" + layout + "' (expected 'manifest' or 'opencv-graycode')");
+  }
+  if (projector_size.empty()) throw InputError("--layout opencv-graycode needs --projector WxH");
+  return capture::manifest_from_opencv_layout(capture_dir, projector_size);
+}
+
+namespace {
+
+struct FrameIndex {
+  std::size_t white = 0;
+  std::size_t black = 0;
+  std::map<std::pair<GrayAxis, int>, std::pair<std::size_t, std::size_t>> gray_pairs;  // -> (pattern, inverse)
+  std::vector<std::size_t> dots;
+};
+
+// read_manifest / manifest_from_opencv_layout have checked that the protocol is complete.
+FrameIndex index_frames(const capture::CaptureManifest& manifest) {
+  FrameIndex index;
+  for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
+    const auto& pattern = manifest.frames[i].pattern;
+    switch (pattern.kind) {
+      case PatternKind::kWhite:
+        index.white = i;
+        break;
+      case PatternKind::kBlack:
+        index.black = i;
+        break;
+      case PatternKind::kGrayColumn:
+      case PatternKind::kGrayRow: {
+        const GrayAxis axis = pattern.kind == PatternKind::kGrayColumn ? GrayAxis::kColumns : GrayAxis::kRows;
+        auto& pair = index.gray_pairs[{axis, pattern.bit}];
+        (pattern.inverse ? pair.second : pair.first) = i;
+        break;
+      }
+      case PatternKind::kDot:
+        index.dots.push_back(i);
+        break;
+    }
+  }
+  return index;
+}
+
+// One call on the accumulator and the capture frames it takes (indices into the manifest).
+struct Step {
+  enum class Kind { kGrayPair, kFinishGray, kDot, kFinish };
+  Kind kind;
+  std::vector<std::size_t> frames;  // the pattern and inverse of a Gray pair; the dot frame; none otherwise
+  GrayAxis axis = GrayAxis::kColumns;
+  int bit = 0;
+  int offset_x = 0;
+  int offset_y = 0;
+
+  const char* stage() const { return kind == Kind::kDot ? "compress" : kind == Kind::kFinish ? "finalize" : "decode"; }
+};
+
+// Gray pairs, finish_gray, dot frames, finish: the order TransportAccumulator requires.
+std::vector<Step> plan_steps(const FrameIndex& index, const capture::CaptureManifest& manifest) {
+  std::vector<Step> steps;
+  for (const auto& pair : index.gray_pairs) {
+    Step step{Step::Kind::kGrayPair, {pair.second.first, pair.second.second}};
+    step.axis = pair.first.first;
+    step.bit = pair.first.second;
+    steps.push_back(step);
+  }
+  steps.push_back({Step::Kind::kFinishGray, {}});
+  for (const std::size_t i : index.dots) {
+    Step step{Step::Kind::kDot, {i}};
+    step.offset_x = manifest.frames[i].pattern.dot_offset_x;
+    step.offset_y = manifest.frames[i].pattern.dot_offset_y;
+    steps.push_back(step);
+  }
+  steps.push_back({Step::Kind::kFinish, {}});
+  return steps;
+}
+
+// Feeds one step to an accumulator: `frames` are the step's frames, white/black the capture's (or row blocks of
+// them). The finish step is not applied here (it returns the transport).
+void apply(TransportAccumulator& accumulator, const Step& step, const std::vector<cv::Mat>& frames,
+           const cv::Mat& white, const cv::Mat& black) {
+  switch (step.kind) {
+    case Step::Kind::kGrayPair:
+      accumulator.add_gray_pair(step.axis, step.bit, frames[0], frames[1]);
+      break;
+    case Step::Kind::kFinishGray:
+      accumulator.finish_gray(white, black);
+      break;
+    case Step::Kind::kDot:
+      accumulator.add_dot_frame(step.offset_x, step.offset_y, frames[0]);
+      break;
+    case Step::Kind::kFinish:
+      break;
+  }
+}
+
+// The capture opened for streaming: manifest with the camera size, white and black in memory, the setup resolved.
+struct OpenedCapture {
+  capture::CaptureManifest manifest;
+  FrameIndex index;
+  cv::Mat white;
+  cv::Mat black;
+  TransportSetup setup;
+};
+
+OpenedCapture open_frames(const fs::path& capture_dir, capture::CaptureManifest manifest, TransportSetup setup,
+                          const std::function<cv::Mat(const capture::CaptureManifest&, std::size_t)>& load) {
+  OpenedCapture opened;
+  opened.index = index_frames(manifest);
+  opened.white = load(manifest, opened.index.white);
+  if (manifest.camera_size.empty()) manifest.camera_size = opened.white.size();  // later frames must match the first
+  opened.black = load(manifest, opened.index.black);
+  double brightest = 0.0;
+  cv::minMaxLoc(opened.white - opened.black, nullptr, &brightest);
+  if (brightest <= setup.thresholds.black) {
+    throw InputError("all-dark capture: no pixel of " +
+                     (capture_dir / manifest.frames[opened.index.white].file).string() + " is brighter than " +
+                     (capture_dir / manifest.frames[opened.index.black].file).string() + " by more than " +
+                     "the black threshold " + std::to_string(setup.thresholds.black) + " (maximum difference " +
+                     std::to_string(brightest) + ")");
+  }
+  setup.camera_size = manifest.camera_size;
+  setup.projector_size = manifest.projector_size;
+  setup.dot_spacing = manifest.dot_spacing;
+  setup.thresholds = resolve_thresholds(setup.thresholds, manifest.bit_depth);
+  opened.setup = setup;
+  opened.manifest = std::move(manifest);
+  return opened;
+}
+
+// The transport stage's side of the block runner: one device accumulator per camera row block.
+class TransportBlocks final : public sched::BlockTask {
+ public:
+  TransportBlocks(const fs::path& capture_dir, const OpenedCapture& capture, const std::vector<Step>& steps,
+                  const std::vector<sched::Tile>& blocks, cl::ProgramCache& programs, KernelEntry entry)
+      : capture_dir_(capture_dir),
+        capture_(capture),
+        steps_(steps),
+        blocks_(blocks),
+        programs_(programs),
+        entry_(entry),
+        accumulators_(blocks.size()),
+        results_(blocks.size()) {}
+
+  void set_frames(std::vector<cv::Mat> frames) { frames_ = std::move(frames); }
+
+  void prepare(sched::Worker& worker) override {
+    programs_.get(worker.device(), "transport/decode.cl");
+    programs_.get(worker.device(), "transport/compress.cl",
+                  "-DRF_K=" + std::to_string(capture_.setup.entries_per_pixel));
+  }
+
+  void create(sched::Worker& worker, std::size_t block) override {
+    TransportSetup setup = capture_.setup;
+    setup.camera_size.height = static_cast<int>(blocks_[block].size());
+    accumulators_[block] = make_device_accumulator(setup, worker.device(), programs_, entry_);
+  }
+
+  void step(sched::Worker&, std::size_t block, std::size_t index, bool replay) override {
+    const Step& step = steps_[index];
+    auto& accumulator = *accumulators_[block];
+    if (step.kind == Step::Kind::kFinish) {
+      results_[block] = accumulator.finish();
+      return;
+    }
+    std::vector<cv::Mat> frames;
+    for (std::size_t i = 0; i < step.frames.size(); ++i) {
+      frames.push_back(
+          rows(replay ? capture::load_frame(capture_dir_, capture_.manifest, step.frames[i]) : frames_[i], block));
+    }
+    apply(accumulator, step, frames, rows(capture_.white, block), rows(capture_.black, block));
+  }
+
+  // The blocks' transports stacked into the whole camera image.
+  CompressedTransport assemble() const {
+    CompressedTransport whole = make_empty_transport(capture_.setup);
+    const auto width = static_cast<std::size_t>(capture_.setup.camera_size.width);
+    const auto k = static_cast<std::size_t>(capture_.setup.entries_per_pixel);
+    for (std::size_t b = 0; b < blocks_.size(); ++b) {
+      const std::size_t first = blocks_[b].begin * width;
+      const CompressedTransport& part = results_[b];
+      std::copy(part.indices.begin(), part.indices.end(), whole.indices.begin() + first * k);
+      std::copy(part.weights.begin(), part.weights.end(), whole.weights.begin() + first * k);
+      std::copy(part.correspondence.begin(), part.correspondence.end(), whole.correspondence.begin() + 2 * first);
+      std::copy(part.gray_x.begin(), part.gray_x.end(), whole.gray_x.begin() + first);
+      std::copy(part.gray_y.begin(), part.gray_y.end(), whole.gray_y.begin() + first);
+      std::copy(part.flags.begin(), part.flags.end(), whole.flags.begin() + first);
+      std::copy(part.direct_energy.begin(), part.direct_energy.end(), whole.direct_energy.begin() + first);
+    }
+    return whole;
+  }
+
+ private:
+  // Full-width rows of a continuous frame are continuous, as the accumulators require.
+  cv::Mat rows(const cv::Mat& frame, std::size_t block) const {
+    return frame.rowRange(static_cast<int>(blocks_[block].begin), static_cast<int>(blocks_[block].end));
+  }
+
+  const fs::path& capture_dir_;
+  const OpenedCapture& capture_;
+  const std::vector<Step>& steps_;
+  const std::vector<sched::Tile>& blocks_;
+  cl::ProgramCache& programs_;
+  KernelEntry entry_;
+  std::vector<cv::Mat> frames_;  // the current step's frames
+  std::vector<std::unique_ptr<TransportAccumulator>> accumulators_;
+  std::vector<CompressedTransport> results_;
+};
+
+}  // namespace
+
+TransportRun compute_transport(const fs::path& capture_dir, capture::CaptureManifest manifest, TransportSetup setup,
+                               const AccumulatorFactory& make_accumulator) {
+  StageClock clock;
+  Progress progress("transport", manifest.frames.size(), "frames");
+  const auto load = [&](const capture::CaptureManifest& with_size, std::size_t i) {
+    cv::Mat frame = clock.time("read frames", [&] { return capture::load_frame(capture_dir, with_size, i); });
+    progress.advance();
+    return frame;
+  };
+  const OpenedCapture capture = open_frames(capture_dir, std::move(manifest), setup, load);
+  auto accumulator = clock.time("setup", [&] { return make_accumulator(capture.setup); });
+  TransportRun run;
+  for (const Step& step : plan_steps(capture.index, capture.manifest)) {
+    if (step.kind == Step::Kind::kFinish) {
+      run.transport = clock.time(step.stage(), [&] { return accumulator->finish(); });
+      break;
+    }
+    std::vector<cv::Mat> frames;
+    for (const std::size_t i : step.frames) frames.push_back(load(capture.manifest, i));
+    clock.time(step.stage(), [&] { apply(*accumulator, step, frames, capture.white, capture.black); });
+  }
+  run.timings = clock.timings();
+  return run;
+}
+
+TransportRun compute_transport_on_devices(const fs::path& capture_dir, capture::CaptureManifest manifest,
+                                          TransportSetup setup, std::vector<cl::DeviceContext>& devices,
+                                          cl::ProgramCache& programs, KernelEntry entry) {
+  StageClock clock;
+  Progress progress("transport", manifest.frames.size(), "frames");
+  const auto load = [&](const capture::CaptureManifest& with_size, std::size_t i) {
+    return capture::load_frame(capture_dir, with_size, i);
+  };
+  const OpenedCapture capture = clock.time("read frames", [&] {
+    auto opened = open_frames(capture_dir, std::move(manifest), setup, load);
+    progress.advance(2);
+    return opened;
+  });
+  const std::vector<Step> steps = plan_steps(capture.index, capture.manifest);
+  const auto rows = static_cast<std::size_t>(capture.setup.camera_size.height);
+  const std::vector<sched::Tile> blocks =
+      sched::split_rows(rows, devices.size() == 1 ? 1 : kBlocksPerDevice * devices.size());
+  TransportBlocks task(capture_dir, capture, steps, blocks, programs, entry);
+  sched::BlockRunner runner(devices, blocks, task, static_cast<std::size_t>(capture.setup.camera_size.width));
+
+  // Frames of step i + 1 are read on another thread while the devices work on step i.
+  const auto read_step = [&](std::size_t i) {
+    std::vector<cv::Mat> frames;
+    if (i < steps.size()) {
+      for (const std::size_t frame : steps[i].frames) frames.push_back(load(capture.manifest, frame));
+    }
+    return frames;
+  };
+  auto next = std::async(std::launch::async, read_step, 0);
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    task.set_frames(clock.time("read frames", [&] { return next.get(); }));
+    progress.advance(steps[i].frames.size());
+    next = std::async(std::launch::async, read_step, i + 1);
+    clock.time(steps[i].stage(), [&] { runner.run_step(i, steps[i].stage()); });
+  }
+  TransportRun run;
+  run.transport = clock.time("finalize", [&] { return task.assemble(); });
+  run.timings = clock.timings();
+  run.schedule = runner.reports();
+  return run;
+}
+
+}  // namespace rfrecon::transport

@@ -1,0 +1,51 @@
+// The light transport stage: reads a capture frame by frame and streams it through a TransportAccumulator.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "host/capture/manifest.h"
+#include "host/core/stage_clock.h"
+#include "host/sched/report.h"
+#include "host/transport/accumulator.h"
+
+namespace rfrecon::transport {
+
+// Opens a capture directory: DIR/manifest.json when layout is empty or "manifest"; for "opencv-graycode", the
+// files sorted by name as OpenCV GrayCodePattern's sequence for `projector_size`
+// (capture::manifest_from_opencv_layout). Throws InputError on an unknown layout or a missing projector size.
+capture::CaptureManifest open_capture(const std::filesystem::path& capture_dir, const std::string& layout,
+                                      cv::Size projector_size);
+
+struct TransportRun {
+  CompressedTransport transport;
+  // "read frames", "setup" (buffers, kernel builds; within "decode" on devices), "decode", "compress", "finalize"
+  std::vector<StageTiming> timings;
+  std::vector<sched::RunReport> schedule;  // per stage and device (compute_transport_on_devices only)
+};
+
+using AccumulatorFactory = std::function<std::unique_ptr<TransportAccumulator>(const TransportSetup&)>;
+
+// Reads the frames one at a time (white, black, Gray pairs, dot frames: at most two in memory besides white and
+// black) and feeds them to the accumulator made for the capture's setup. `setup` gives K and the thresholds; sizes
+// and dot spacing come from the manifest (camera size from the first frame when the manifest has none).
+// Throws InputError naming the file for a missing, unreadable or mismatched frame, and for an all-dark capture.
+TransportRun compute_transport(const std::filesystem::path& capture_dir, capture::CaptureManifest manifest,
+                               TransportSetup setup, const AccumulatorFactory& make_accumulator);
+
+// Camera row blocks per device when several devices share the transport stage (one block on a single device).
+inline constexpr int kBlocksPerDevice = 4;
+
+// The same stage on every device of `devices` (host/sched/block_runner.h): camera rows cut into blocks, each block's
+// per-pixel state on the device that first took it, every frame read once and fed to all blocks. The next frames
+// are read while the devices work on the current ones. When a device fails, its blocks are rebuilt on the others
+// by re-reading the earlier frames; only when all fail does it throw (sched::AllDevicesFailed). The kernels are
+// per pixel, so the result equals the single-device result bit for bit.
+TransportRun compute_transport_on_devices(const std::filesystem::path& capture_dir, capture::CaptureManifest manifest,
+                                          TransportSetup setup, std::vector<cl::DeviceContext>& devices,
+                                          cl::ProgramCache& programs, KernelEntry entry);
+
+}  // namespace rfrecon::transport

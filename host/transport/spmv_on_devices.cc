@@ -1,0 +1,126 @@
+// Tiled, double-buffered primal and dual products on several devices (kernels/transport/spmv.cl).
+#include "host/transport/spmv_on_devices.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "host/cl/kernel_launch.h"
+
+namespace rfrecon::transport {
+
+namespace {
+
+// Tiles are multiples of this many output pixels: large enough that per-tile overhead stays small.
+constexpr std::size_t kGranularity = 256;
+constexpr std::size_t kWorkGroup = 64;
+
+// Grows the slot's buffer to the tile's inputs and uploads them on the transfer queue, without waiting.
+template <typename T>
+void write_async(sched::Worker& worker, cl::GrowingBuffer& buffer, const T* data, std::size_t count) {
+  const ::cl::Buffer& target = buffer.at_least(worker.device().context(), count * sizeof(T), CL_MEM_READ_ONLY);
+  cl::write_buffer(worker.transfer_queue(), target, data, count, false);
+}
+
+// One device's kernel, the light vector (same for every tile) and two sets of tile buffers.
+struct DeviceState {
+  ::cl::Kernel kernel;
+  ::cl::Buffer light;
+  cl::GrowingBuffer rows[2];     // primal: ELL indices; dual: rebased CSR row starts
+  cl::GrowingBuffer columns[2];  // dual: camera pixels
+  cl::GrowingBuffer weights[2];
+  cl::GrowingBuffer output[2];
+  std::vector<std::int32_t> rebased[2];  // dual: host copy of the rebased row starts while they upload
+};
+
+void prepare(sched::Worker& worker, DeviceState& state, cl::ProgramCache& programs, cl::KernelEntry entry,
+             const char* name, const std::vector<float>& light) {
+  state.kernel = cl::make_kernel(programs.get(worker.device(), "transport/spmv.cl"), name, entry);
+  state.light = cl::upload(worker.device().context(), light);
+}
+
+// Sets the arguments, runs the kernel after the slot's uploads, and reads the tile's pixels into `image`.
+template <typename... Args>
+void run_tile(sched::Worker& worker, DeviceState& state, cl::KernelEntry entry, const sched::Tile& tile, int slot,
+              std::vector<float>& image, const Args&... args) {
+  const ::cl::Buffer& output =
+      state.output[slot].at_least(worker.device().context(), tile.size() * sizeof(float), CL_MEM_WRITE_ONLY);
+  cl::set_args(state.kernel, args..., state.light, output, static_cast<cl_uint>(tile.size()));
+  // A fixed work-group size, the global size rounded up to it (the kernels skip ids >= n): tiles of many sizes
+  // would otherwise make PoCL compile the kernel again for every work-group size it picks.
+  const std::size_t group = std::min<std::size_t>(kWorkGroup, worker.device().info().max_work_group_size);
+  cl::enqueue_kernel(worker.queue(), state.kernel, entry, tile.size(), {group, &worker.inputs_ready(slot)});
+  cl::read_buffer(worker.queue(), output, image.data() + tile.begin, tile.size());
+}
+
+ProductRun run_product(std::vector<cl::DeviceContext>& devices, std::size_t pixels, sched::Options& options,
+                       const char* stage, sched::TileWork& work, std::vector<float>& image) {
+  if (options.stage == sched::Options().stage) options.stage = stage;
+  if (options.granularity == 0) options.granularity = kGranularity;
+  ProductRun run;
+  run.report = sched::run_tiles(devices, pixels, work, options);
+  run.image = std::move(image);
+  return run;
+}
+
+}  // namespace
+
+ProductRun primal_on_devices(std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs, cl::KernelEntry entry,
+                             const transport::CompressedTransport& transport, const std::vector<float>& light_p,
+                             sched::Options options) {
+  if (light_p.size() != transport.projector_pixels()) {
+    throw std::invalid_argument("primal: light has " + std::to_string(light_p.size()) + " values, expected " +
+                                std::to_string(transport.projector_pixels()));
+  }
+  const auto k = static_cast<std::size_t>(transport.k());
+  std::vector<float> image(transport.camera_pixels(), 0.0f);
+  std::vector<DeviceState> states(devices.size());
+  sched::TileWork work;
+  work.prepare = [&](sched::Worker& worker) {
+    prepare(worker, states[worker.position()], programs, entry, "primal", light_p);
+  };
+  work.upload = [&](sched::Worker& worker, const sched::Tile& tile, int slot) {
+    auto& state = states[worker.position()];
+    write_async(worker, state.rows[slot], transport.indices.data() + tile.begin * k, tile.size() * k);
+    write_async(worker, state.weights[slot], transport.weights.data() + tile.begin * k, tile.size() * k);
+  };
+  work.compute = [&](sched::Worker& worker, const sched::Tile& tile, int slot) {
+    auto& state = states[worker.position()];
+    run_tile(worker, state, entry, tile, slot, image, static_cast<cl_uint>(k), state.rows[slot].buffer(),
+             state.weights[slot].buffer());
+  };
+  return run_product(devices, transport.camera_pixels(), options, "primal", work, image);
+}
+
+ProductRun dual_on_devices(std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs, cl::KernelEntry entry,
+                           const transport::TransposedTransport& transposed, const std::vector<float>& light_c,
+                           sched::Options options) {
+  const auto pixels = static_cast<std::size_t>(transposed.projector_size.area());
+  if (transposed.row_start.size() != pixels + 1) throw std::invalid_argument("dual: malformed transposed transport");
+  std::vector<float> image(pixels, 0.0f);
+  std::vector<DeviceState> states(devices.size());
+  sched::TileWork work;
+  work.prepare = [&](sched::Worker& worker) {
+    prepare(worker, states[worker.position()], programs, entry, "dual", light_c);
+  };
+  work.upload = [&](sched::Worker& worker, const sched::Tile& tile, int slot) {
+    auto& state = states[worker.position()];
+    const std::int32_t first = transposed.row_start[tile.begin];
+    const auto nonzeros = static_cast<std::size_t>(transposed.row_start[tile.end] - first);
+    auto& rebased = state.rebased[slot];
+    rebased.assign(transposed.row_start.begin() + static_cast<std::ptrdiff_t>(tile.begin),
+                   transposed.row_start.begin() + static_cast<std::ptrdiff_t>(tile.end) + 1);
+    for (auto& start : rebased) start -= first;
+    write_async(worker, state.rows[slot], rebased.data(), rebased.size());
+    write_async(worker, state.columns[slot], transposed.camera_pixel.data() + first, nonzeros);
+    write_async(worker, state.weights[slot], transposed.weights.data() + first, nonzeros);
+  };
+  work.compute = [&](sched::Worker& worker, const sched::Tile& tile, int slot) {
+    auto& state = states[worker.position()];
+    run_tile(worker, state, entry, tile, slot, image, state.rows[slot].buffer(), state.columns[slot].buffer(),
+             state.weights[slot].buffer());
+  };
+  return run_product(devices, pixels, options, "dual", work, image);
+}
+
+}  // namespace rfrecon::transport

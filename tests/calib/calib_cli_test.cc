@@ -1,0 +1,77 @@
+// `rfrecon calibrate` and `calibrate-camera` on bad input: documented exit codes, messages naming the problem, and
+// no calibration file left behind.
+#include <filesystem>
+#include <fstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "host/cli/exit_codes.h"
+#include "tests/common/run_cli.h"
+#include "tests/common/temp_dir.h"
+
+namespace rfrecon::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+const fs::path kPoses = fs::path(RFRECON_FIXTURES_DIR) / "checkerboard-poses" / "capture";
+
+using rfrecon::testing::run_cli;
+
+class CalibrateCliTest : public ::testing::Test {
+ protected:
+  std::string pose(int i) const { return (kPoses / ("pose_0" + std::to_string(i))).string(); }
+  rfrecon::testing::TempDir temp_{"calib_cli"};
+  const fs::path out_ = temp_.path();
+};
+
+TEST_F(CalibrateCliTest, TooFewPosesIsExit6WithoutRig) {
+  const auto result =
+      run_cli("calibrate " + pose(0) + " " + pose(1) + " --board 9x6 --square 30 -o " + (out_ / "rig.yaml").string());
+  EXPECT_EQ(result.exit_code, kExitProcessing) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("at least 3 views"));
+  EXPECT_FALSE(fs::exists(out_ / "rig.yaml"));
+}
+
+TEST_F(CalibrateCliTest, BoardFoundNowhereIsExit6WithoutRig) {
+  const auto result = run_cli("calibrate " + pose(0) + " " + pose(1) + " " + pose(2) + " --board 7x5 --square 20 -o " +
+                              (out_ / "rig.yaml").string());
+  EXPECT_EQ(result.exit_code, kExitProcessing) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("board not found"));
+  EXPECT_FALSE(fs::exists(out_ / "rig.yaml"));
+}
+
+TEST_F(CalibrateCliTest, MixedImageSizesIsExit3) {
+  fs::create_directories(out_);
+  const fs::path small = out_ / "small.png";
+  cv::imwrite(small.string(), cv::Mat(100, 120, CV_8U, cv::Scalar(90)));
+  const auto result = run_cli("calibrate-camera " + pose(0) + "/000_white.png " + small.string() +
+                              " --board 9x6 --square 30 -o " + (out_ / "camera.yaml").string());
+  EXPECT_EQ(result.exit_code, kExitInput) << result.output;
+  EXPECT_THAT(result.output, HasSubstr(small.string()));
+  EXPECT_FALSE(fs::exists(out_ / "camera.yaml"));
+}
+
+TEST_F(CalibrateCliTest, UnreadableImageIsExit3) {
+  fs::create_directories(out_);
+  const fs::path broken = out_ / "broken.png";
+  std::ofstream(broken) << "not an image";
+  const auto result =
+      run_cli("calibrate-camera " + broken.string() + " --board 9x6 --square 30 -o " + (out_ / "camera.yaml").string());
+  EXPECT_EQ(result.exit_code, kExitInput) << result.output;
+  EXPECT_THAT(result.output, HasSubstr(broken.string()));
+  EXPECT_FALSE(fs::exists(out_ / "camera.yaml"));
+}
+
+TEST_F(CalibrateCliTest, SquareBoardIsRejected) {
+  const auto result = run_cli("calibrate-camera " + pose(0) + "/000_white.png --board 6x6 --square 20 -o " +
+                              (out_ / "camera.yaml").string());
+  EXPECT_EQ(result.exit_code, kExitInput) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("inner corner counts differ"));
+}
+
+}  // namespace
+}  // namespace rfrecon::cli
