@@ -9,6 +9,8 @@
 
 #include <unistd.h>
 
+#include "host/core/errors.h"
+
 namespace rfrecon {
 
 namespace fs = std::filesystem;
@@ -64,7 +66,7 @@ StagingDirectory::StagingDirectory(fs::path target, bool replace_existing)
     : target_(std::move(target)), staging_(sibling_temp(target_, "staging")), replace_existing_(replace_existing) {
   std::error_code ec;
   if (fs::exists(target_, ec) && !replace_existing_ && !is_empty_dir(target_)) {
-    throw std::runtime_error("output directory " + target_.string() + " exists and is not empty (use --force)");
+    throw InputError("output directory " + target_.string() + " exists and is not empty (use --force)");
   }
   fs::create_directories(staging_, ec);
   if (ec) throw std::runtime_error("cannot create directory " + staging_.string() + ": " + ec.message());

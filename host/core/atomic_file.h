@@ -30,8 +30,9 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view b
 
 // A staging directory next to `target` for outputs made of many files. commit() moves it into place: a target
 // that does not exist (or is an empty directory) is replaced; an existing non-empty target is replaced only when
-// `replace_existing` is set, and then only after the new one is complete. Destroyed uncommitted, the staging
-// directory is removed and the target is untouched.
+// `replace_existing` is set, and then only after the new one is complete (without it, constructing throws
+// InputError: the user named a directory that holds something). Destroyed uncommitted, the staging directory is
+// removed and the target is untouched.
 class StagingDirectory {
  public:
   StagingDirectory(std::filesystem::path target, bool replace_existing);

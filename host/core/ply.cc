@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "host/core/atomic_file.h"
+#include "host/core/image_file.h"
 
 namespace rfrecon {
 
@@ -21,7 +22,7 @@ void append_little_endian(std::string& bytes, float value) {
 void check_map(const cv::Mat& map, int type, cv::Size size, const std::string& what) {
   if (map.type() != type || map.size() != size) {
     throw std::invalid_argument("write_point_cloud_ply: " + what + " must be " + cv::typeToString(type) + " of " +
-                                std::to_string(size.width) + "x" + std::to_string(size.height));
+                                size_text(size));
   }
 }
 

@@ -8,7 +8,7 @@
 
 #include "calib/camera_from_images.h"
 #include "host/core/atomic_file.h"
-#include "host/evaluation/evaluate_directory.h"
+#include "host/evaluation/evaluation.h"
 #include "host/pipeline/calibrate_rig.h"
 #include "host/pipeline/reconstruct_scan.h"
 #include "host/pipeline/transport_capture.h"
@@ -63,6 +63,7 @@ DemoRun run_demo(const fs::path& out_dir, std::vector<cl::DeviceContext>& device
   spdlog::info("demo: light transport of {}", transport.capture_dir.string());
   transport_capture(transport, devices, programs);
 
+  const auto truth = evaluation::read_evaluation_truth(cube);
   nlohmann::json table = nlohmann::json::array();
   for (const auto method : {depth::Method::kTriangulate, depth::Method::kIntegrate, depth::Method::kFused}) {
     ReconstructRequest reconstruct;
@@ -72,9 +73,10 @@ DemoRun run_demo(const fs::path& out_dir, std::vector<cl::DeviceContext>& device
     reconstruct.out_dir = out_dir / depth::method_name(method);
     reconstruct.force = true;
     spdlog::info("demo: reconstruct ({})", depth::method_name(method));
-    reconstruct_scan(reconstruct, devices, programs);
-    const auto evaluated = evaluation::evaluate_directory({reconstruct.out_dir, cube, "", {}, {}});
-    const auto& e = evaluated.evaluation;
+    const auto run = reconstruct_scan(reconstruct, devices, programs);
+    // The maps in memory equal those just written (float32 TIFFs), so the truth is read once and nothing read back.
+    const auto e = evaluation::evaluate(run.depth.maps, truth, (reconstruct.out_dir / "depth.tiff").string());
+    evaluation::write_evaluation(e, reconstruct.out_dir / "evaluation.json", reconstruct.out_dir / "error_map.png");
     demo.object_size_mm = e.object_size_mm;
     DemoRow row{depth::method_name(method), e.object.rms_mm,     100.0 * e.object.rms_mm / e.object_size_mm,
                 e.object.mean_abs_mm,       e.object.max_abs_mm, e.object.coverage_percent};
