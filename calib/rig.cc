@@ -1,10 +1,10 @@
 // Reading, writing and completing the stereo rig file.
 #include "calib/rig.h"
 
+#include <cmath>
 #include <string>
 
-#include <opencv2/calib3d.hpp>
-
+#include "calib/rectification.h"
 #include "host/core/atomic_file.h"
 #include "host/core/errors.h"
 
@@ -32,8 +32,12 @@ void check_dist(const cv::Mat& m, const char* key, const std::string& file) {
   }
 }
 
-// Checks every matrix of the rig; `file` names the rig in messages.
-void check_rig(const StereoRig& rig, const std::string& file) {
+void check_finite(const cv::Mat& m, const char* key, const std::string& file) {
+  if (!cv::checkRange(m)) throw InputError(file + ": key '" + key + "' holds a value that is not finite");
+}
+
+// Checks the measured keys of the rig (sizes, intrinsics, R, T); `file` names the rig in messages.
+void check_measured(const StereoRig& rig, const std::string& file) {
   for (const auto& [size, key] : {std::pair{rig.camera_size, "camera_size"}, {rig.projector_size, "projector_size"}}) {
     if (size.width <= 0 || size.height <= 0) throw InputError(file + ": key '" + key + "' must be [w, h] > 0");
   }
@@ -43,6 +47,24 @@ void check_rig(const StereoRig& rig, const std::string& file) {
   check_dist(rig.projector_dist_coeffs, "projector_dist_coeffs", file);
   check_shape(rig.R, 3, 3, "R", file);
   check_shape(rig.T, 3, 1, "T", file);
+  for (const auto& [m, key] : {std::pair{&rig.camera_matrix, "camera_matrix"},
+                               {&rig.dist_coeffs, "dist_coeffs"},
+                               {&rig.projector_matrix, "projector_matrix"},
+                               {&rig.projector_dist_coeffs, "projector_dist_coeffs"},
+                               {&rig.R, "R"},
+                               {&rig.T, "T"}}) {
+    check_finite(*m, key, file);
+  }
+  const cv::Mat should_be_identity = rig.R.t() * rig.R;
+  // 1e-4: R typed in with five decimals (from another toolbox's report) still reads.
+  if (cv::norm(should_be_identity, cv::Mat::eye(3, 3, CV_64F), cv::NORM_INF) > 1e-4 || cv::determinant(rig.R) < 0.0) {
+    throw InputError(file + ": key 'R' is not a rotation matrix (orthonormal, determinant +1)");
+  }
+}
+
+// Checks every matrix of the rig.
+void check_rig(const StereoRig& rig, const std::string& file) {
+  check_measured(rig, file);
   check_shape(rig.E, 3, 3, "E", file);
   check_shape(rig.F, 3, 3, "F", file);
   check_shape(rig.R1, 3, 3, "R1", file);
@@ -80,22 +102,31 @@ cv::Size read_size(const cv::FileStorage& fs, const char* key, const std::string
 }  // namespace
 
 void compute_stereo_geometry(StereoRig& rig) {
-  check_shape(rig.R, 3, 3, "R", "stereo rig");
-  check_shape(rig.T, 3, 1, "T", "stereo rig");
-  const cv::Mat t = as_double(rig.T);
+  for (cv::Mat* m :
+       {&rig.camera_matrix, &rig.dist_coeffs, &rig.projector_matrix, &rig.projector_dist_coeffs, &rig.R, &rig.T}) {
+    *m = as_double(*m);
+  }
+  check_measured(rig, "stereo rig");
+  const cv::Mat t = rig.T;
   const cv::Mat t_cross = (cv::Mat_<double>(3, 3) << 0, -t.at<double>(2), t.at<double>(1), t.at<double>(2), 0,
                            -t.at<double>(0), -t.at<double>(1), t.at<double>(0), 0);
   rig.E = t_cross * as_double(rig.R);
   rig.F = as_double(rig.projector_matrix).inv().t() * rig.E * as_double(rig.camera_matrix).inv();
-  rig.F /= rig.F.at<double>(2, 2);
-  cv::stereoRectify(rig.camera_matrix, rig.dist_coeffs, rig.projector_matrix, rig.projector_dist_coeffs,
-                    rig.camera_size, rig.R, rig.T, rig.R1, rig.R2, rig.P1, rig.P2, rig.Q, cv::CALIB_ZERO_DISPARITY,
-                    kRectifyAlpha, rig.camera_size);
+  if (std::abs(rig.F.at<double>(2, 2)) > 1e-12 * cv::norm(rig.F)) rig.F /= rig.F.at<double>(2, 2);
+  const RowRectification rectification = rectify_rig(rig);
+  rig.R1 = cv::Mat(rectification.rect_from_cam).clone();
+  rig.R2 = cv::Mat(rectification.rect_from_proj).clone();
+  rig.P1 = rectification.P1;
+  rig.P2 = rectification.P2;
+  rig.Q = rectification.Q;
+  rig.rectified_camera_size = rectification.camera_size;
+  rig.rectified_projector_size = rectification.projector_size;
 }
 
 void write_rig(const StereoRig& rig, const fs::path& file) {
   check_rig(rig, file.string());
   cv::FileStorage fs("rig.yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
+  fs << "format" << kRigFormat << "version" << kRigVersion;
   fs << "camera_size" << rig.camera_size << "projector_size" << rig.projector_size;
   fs << "camera_matrix" << as_double(rig.camera_matrix) << "dist_coeffs" << as_double(rig.dist_coeffs).reshape(1, 1);
   fs << "projector_matrix" << as_double(rig.projector_matrix) << "projector_dist_coeffs"
@@ -103,6 +134,8 @@ void write_rig(const StereoRig& rig, const fs::path& file) {
   fs << "R" << as_double(rig.R) << "T" << as_double(rig.T) << "E" << as_double(rig.E) << "F" << as_double(rig.F);
   fs << "R1" << as_double(rig.R1) << "R2" << as_double(rig.R2) << "P1" << as_double(rig.P1) << "P2" << as_double(rig.P2)
      << "Q" << as_double(rig.Q);
+  fs << "rectified_camera_size" << rig.rectified_camera_size << "rectified_projector_size"
+     << rig.rectified_projector_size;
   fs << "rms" << rig.rms << "per_view_errors" << rig.per_view_errors;
   fs << "board"
      << "{"
@@ -119,6 +152,16 @@ StereoRig read_rig(const fs::path& file) {
     throw InputError(name + ": not a readable OpenCV YAML file (" + error.err + ")");
   }
   if (!fs.isOpened()) throw InputError("cannot read rig file " + name);
+  if (!fs["format"].empty()) {
+    if (!fs["format"].isString() || static_cast<std::string>(fs["format"]) != kRigFormat) {
+      throw InputError(name + ": key 'format' must be '" + kRigFormat + "'");
+    }
+    if (!fs["version"].isInt() || static_cast<int>(fs["version"]) < 1 ||
+        static_cast<int>(fs["version"]) > kRigVersion) {
+      throw InputError(name + ": key 'version' must be an integer from 1 to " + std::to_string(kRigVersion) +
+                       " (a newer rfrecon wrote this file?)");
+    }
+  }
   StereoRig rig;
   rig.camera_size = read_size(fs, "camera_size", name);
   rig.projector_size = read_size(fs, "projector_size", name);
@@ -128,13 +171,6 @@ StereoRig read_rig(const fs::path& file) {
   rig.projector_dist_coeffs = read_mat(fs, "projector_dist_coeffs", name);
   rig.R = read_mat(fs, "R", name);
   rig.T = read_mat(fs, "T", name);
-  rig.E = read_mat(fs, "E", name);
-  rig.F = read_mat(fs, "F", name);
-  rig.R1 = read_mat(fs, "R1", name);
-  rig.R2 = read_mat(fs, "R2", name);
-  rig.P1 = read_mat(fs, "P1", name);
-  rig.P2 = read_mat(fs, "P2", name);
-  rig.Q = read_mat(fs, "Q", name);
   if (fs["rms"].empty()) throw InputError(name + ": missing key 'rms'");
   rig.rms = static_cast<double>(fs["rms"]);
   if (!fs["per_view_errors"].empty()) fs["per_view_errors"] >> rig.per_view_errors;
@@ -145,7 +181,12 @@ StereoRig read_rig(const fs::path& file) {
     rig.board.rows = static_cast<int>(board["rows"]);
     rig.board.square_size = static_cast<double>(board["square_size"]);
   }
-  check_rig(rig, name);
+  check_measured(rig, name);
+  try {
+    compute_stereo_geometry(rig);
+  } catch (const InputError& error) {
+    throw InputError(name + ": " + error.what());
+  }
   return rig;
 }
 

@@ -21,30 +21,35 @@ struct BoardSpec {
 struct StereoRig {
   cv::Size camera_size;
   cv::Size projector_size;
-  cv::Mat camera_matrix;                // 3x3
-  cv::Mat dist_coeffs;                  // 1x5: k1 k2 p1 p2 k3 (OpenCV order; 1x4, 1x8, 1x12, 1x14 also accepted)
-  cv::Mat projector_matrix;             // 3x3
-  cv::Mat projector_dist_coeffs;        // 1xN as dist_coeffs
-  cv::Mat R;                            // 3x3, projector from camera
-  cv::Mat T;                            // 3x1, projector from camera, mm
-  cv::Mat E, F;                         // 3x3 essential and fundamental matrices
-  cv::Mat R1, R2, P1, P2, Q;            // cv::stereoRectify outputs (3x3, 3x3, 3x4, 3x4, 4x4)
+  cv::Mat camera_matrix;           // 3x3
+  cv::Mat dist_coeffs;             // 1x5: k1 k2 p1 p2 k3 (OpenCV order; 1x4, 1x8, 1x12, 1x14 also accepted)
+  cv::Mat projector_matrix;        // 3x3
+  cv::Mat projector_dist_coeffs;   // 1xN as dist_coeffs
+  cv::Mat R;                       // 3x3, projector from camera
+  cv::Mat T;                       // 3x1, projector from camera, mm
+  cv::Mat E, F;                    // 3x3 essential and fundamental matrices
+  cv::Mat R1, R2, P1, P2, Q;       // row rectification, cv::stereoRectify conventions (calib/rectification.h)
+  cv::Size rectified_camera_size;  // the images P1, P2 map into (initUndistortRectifyMap sizes)
+  cv::Size rectified_projector_size;
   double rms = 0.0;                     // reprojection RMS of the calibration, px (0 for ground truth)
   std::vector<double> per_view_errors;  // px per board pose (empty for ground truth)
   BoardSpec board;
 };
 
-// The alpha passed to cv::stereoRectify: 1, so that every pixel of both original images stays inside the rectified
-// images (nothing the camera or projector saw is cropped away; rectified images may have black borders).
-inline constexpr double kRectifyAlpha = 1.0;
+// rig.yaml's `format` and `version` keys; files without them (version 1) are still read.
+inline constexpr const char* kRigFormat = "rfrecon-rig";
+inline constexpr int kRigVersion = 2;
 
-// Fills E, F, R1, R2, P1, P2 and Q from the intrinsics, R and T (rectified image size = camera_size).
+// Fills E, F and the row rectification (R1, R2, P1, P2, Q, rectified sizes) from the intrinsics, R and T.
+// Throws InputError naming the key when the rig is degenerate (calib/rectification.h).
 void compute_stereo_geometry(StereoRig& rig);
 
 // Writes the rig atomically. Throws InputError when a matrix has the wrong size.
 void write_rig(const StereoRig& rig, const std::filesystem::path& file);
 
-// Reads a rig file; throws InputError naming the file and the key when a key is missing or mis-sized.
+// Reads a rig file and recomputes its derived keys (E, F, the rectification) from the intrinsics, R and T, so that a
+// file of an older version reads the same as a new one. Throws InputError naming the file and the key when a key is
+// missing, mis-sized or not finite, or the rig is degenerate.
 StereoRig read_rig(const std::filesystem::path& file);
 
 }  // namespace rfrecon::calib

@@ -4,26 +4,18 @@
 #include <filesystem>
 
 #include "host/core/errors.h"
+#include "host/core/json_file.h"
+#include "sim/builtin_rigs.h"
 
 namespace rfrecon::sim {
 
 using nlohmann::json;
 
 namespace {
-// The lab rig every built-in scene shares, so that a rig calibrated from `checkerboard-poses` fits the object scenes
-// (as in the paper, where the same rig captured the boards and the cube): 640x480 camera and projector with mild lens
-// distortion and an off-centre projector principal point, the projector 150 mm to the right of the camera and toed
-// in toward the scene 560-600 mm ahead.
+// Every built-in scene uses the same rig (kDefaultRig unless `--rig` says otherwise), so that a rig calibrated from
+// `checkerboard-poses` fits the object scenes, as in the paper, where the same rig captured the boards and the cube.
 json lab_rig(json scene) {
-  scene["camera"] = {{"size", {640, 480}},
-                     {"focal", {820.0, 818.0}},
-                     {"principal_point", {322.0, 236.5}},
-                     {"distortion", {-0.08, 0.05, 0.0005, -0.0003, 0.0}}};
-  scene["projector"] = {{"size", {640, 480}},
-                        {"focal", {880.0, 880.0}},
-                        {"principal_point", {319.5, 290.0}},
-                        {"distortion", {0.03, 0.0, 0.0, 0.0, 0.0}},
-                        {"pose", {{"position", {150.0, 0.0, 0.0}}, {"look_at", {0.0, 30.0, 560.0}}}}};
+  scene["rig"] = kDefaultRig;
   return scene;
 }
 
@@ -113,6 +105,15 @@ json checkerboard_poses() {
   return scene;
 }
 
+// The calibration board alone at a pose none of checkerboard-poses has, for flatness and scale checks of a rig.
+json board_plane() {
+  json scene = checkerboard_poses();
+  scene["name"] = "board-plane";
+  scene.erase("views");
+  scene["objects"][0]["pose"] = {{"position", {15.0, 5.0, 620.0}}, {"rotation_deg", {15.0, -20.0, 5.0}}};
+  return scene;
+}
+
 struct Builtin {
   const char* name;
   const char* description;
@@ -127,6 +128,7 @@ const Builtin kBuiltins[] = {
      cylinder_brushed},
     {"plane-lambert", "Lambertian plane at 600 mm tilted 20 degrees", plane_lambert},
     {"checkerboard-poses", "9x6-corner checkerboard (30 mm squares) at 10 poses, for calibration", checkerboard_poses},
+    {"board-plane", "the checkerboard at one pose not among checkerboard-poses, for flatness and scale", board_plane},
 };
 }  // namespace
 
@@ -136,20 +138,25 @@ std::vector<BuiltinSceneInfo> builtin_scenes() {
   return out;
 }
 
-Scene builtin_scene(const std::string& name) {
+Scene builtin_scene(const std::string& name, const std::string& rig) {
   std::string known;
   for (const auto& b : kBuiltins) {
-    if (name == b.name) return scene_from_json(b.make(), "scene '" + name + "'", {});
+    if (name == b.name)
+      return scene_from_json(rig.empty() ? b.make() : with_rig(b.make(), rig), "scene '" + name + "'", {});
     known += known.empty() ? b.name : std::string(", ") + b.name;
   }
   throw InputError("unknown scene '" + name + "' (built-in scenes: " + known + ")");
 }
 
-Scene resolve_scene(const std::string& name_or_file) {
+Scene resolve_scene(const std::string& name_or_file, const std::string& rig) {
   for (const auto& b : kBuiltins) {
-    if (name_or_file == b.name) return builtin_scene(name_or_file);
+    if (name_or_file == b.name) return builtin_scene(name_or_file, rig);
   }
-  if (std::filesystem::is_regular_file(name_or_file)) return load_scene_file(name_or_file);
+  if (std::filesystem::is_regular_file(name_or_file)) {
+    const std::filesystem::path file(name_or_file);
+    const json scene = read_json_file(file);
+    return scene_from_json(rig.empty() ? scene : with_rig(scene, rig), file.string(), file.parent_path());
+  }
   std::string known;
   for (const auto& b : kBuiltins) known += known.empty() ? b.name : std::string(", ") + b.name;
   throw InputError("--scene '" + name_or_file + "' is neither a built-in scene (" + known + ") nor a scene file");

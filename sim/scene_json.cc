@@ -4,6 +4,7 @@
 
 #include "host/core/errors.h"
 #include "host/core/json_file.h"
+#include "sim/builtin_rigs.h"
 #include "sim/scene.h"
 
 namespace rfrecon::sim {
@@ -329,13 +330,22 @@ RenderOptions parse_render(const Reader& r, const json& j, const std::string& pa
 
 Scene scene_from_json(const json& root, const std::string& source, const fs::path& base_dir) {
   const Reader r(source);
-  r.check_keys(root, "", {"name", "camera", "projector", "radiometry", "capture", "render", "objects", "views"});
+  r.check_keys(root, "", {"name", "rig", "camera", "projector", "radiometry", "capture", "render", "objects", "views"});
   Scene scene;
   scene.name = r.get<std::string>(root, "", "name", "scene");
-  if (!root.contains("camera")) r.fail("camera", "missing");
-  scene.camera = parse_device(r, root.at("camera"), "camera", false);
-  if (!root.contains("projector")) r.fail("projector", "missing");
-  scene.projector = parse_device(r, root.at("projector"), "projector", true);
+  json devices = root;
+  if (root.contains("rig")) {
+    if (root.contains("camera") || root.contains("projector")) r.fail("rig", "give either rig or camera and projector");
+    try {
+      devices = builtin_rig(r.get<std::string>(root, "", "rig"));
+    } catch (const InputError& error) {
+      r.fail("rig", error.what());
+    }
+  }
+  if (!devices.contains("camera")) r.fail("camera", "missing (or name a built-in rig with 'rig')");
+  scene.camera = parse_device(r, devices.at("camera"), "camera", false);
+  if (!devices.contains("projector")) r.fail("projector", "missing");
+  scene.projector = parse_device(r, devices.at("projector"), "projector", true);
   if (root.contains("radiometry")) {
     const json& j = root.at("radiometry");
     r.check_keys(j, "radiometry", {"gain", "intensity"});

@@ -4,21 +4,23 @@
 #include "host/cl/device_selection.h"
 #include "host/cli/commands.h"
 #include "host/pipeline/demo.h"
+#include "sim/builtin_rigs.h"
 
 namespace rfrecon::cli {
 
 namespace {
 struct DemoOptions {
   std::filesystem::path out = "out/demo";
+  std::string rig;
   std::string devices;
 };
 
 void run_demo(const DemoOptions& options) {
   auto devices = cl::open_devices(options.devices);
   cl::ProgramCache programs;
-  const auto demo = pipeline::run_demo(options.out, devices, programs);
-  std::printf("\n%s, calibrated from the simulated checkerboard poses (%.0f s in all):\n", demo.scene.c_str(),
-              demo.seconds);
+  const auto demo = pipeline::run_demo(options.out, options.rig, devices, programs);
+  std::printf("\n%s on the %s rig, calibrated from the simulated checkerboard poses (%.0f s in all):\n",
+              demo.scene.c_str(), demo.rig.c_str(), demo.seconds);
   std::printf("%-12s %10s %12s %11s %11s\n", "method", "RMS mm", "% of side", "max mm", "coverage %");
   for (const auto& row : demo.methods) {
     std::printf("%-12s %10.4f %12.3f %11.3f %11.1f\n", row.method.c_str(), row.rms_mm, row.rms_percent, row.max_abs_mm,
@@ -34,6 +36,9 @@ void add_demo_command(CLI::App& app) {
   auto* command = app.add_subcommand("demo", "Simulate, calibrate, reconstruct and evaluate the built-in cube");
   command->add_option("--out", options->out, "Directory for every output (its demo files are replaced)")
       ->capture_default_str();
+  command->add_option(
+      "--rig", options->rig,
+      "Built-in rig to render with (rfrecon simulate --list; default " + std::string(sim::kDefaultRig) + ")");
   add_devices_option(command, options->devices);
   command->callback([options] { run_demo(*options); });
 }

@@ -7,6 +7,7 @@
 #include "host/cli/commands.h"
 #include "host/cli/size_option.h"
 #include "host/core/errors.h"
+#include "sim/builtin_rigs.h"
 #include "sim/builtin_scenes.h"
 #include "sim/simulate.h"
 
@@ -15,6 +16,7 @@ namespace rfrecon::cli {
 namespace {
 struct SimulateCommandOptions {
   std::string scene;
+  std::string rig;
   std::string out;
   std::optional<unsigned long long> seed;
   bool force = false;
@@ -22,20 +24,28 @@ struct SimulateCommandOptions {
   std::string camera_size;
   std::string projector_size;
   std::optional<int> supersample;
+  std::optional<int> dot_spacing;
   int threads = 0;
 };
 
 void run_simulate(const SimulateCommandOptions& o) {
   if (o.list) {
-    for (const auto& info : sim::builtin_scenes()) std::cout << info.name << "\t" << info.description << "\n";
+    std::cout << "scenes (--scene):\n";
+    for (const auto& info : sim::builtin_scenes()) std::cout << "  " << info.name << "\t" << info.description << "\n";
+    std::cout << "rigs (--rig; default " << sim::kDefaultRig << "):\n";
+    for (const auto& info : sim::builtin_rigs()) std::cout << "  " << info.name << "\t" << info.description << "\n";
     return;
   }
   if (o.scene.empty()) throw InputError("--scene is required (a built-in name, see --list, or a scene file)");
   if (o.out.empty()) throw InputError("--out is required");
-  sim::Scene scene = sim::resolve_scene(o.scene);
+  sim::Scene scene = sim::resolve_scene(o.scene, o.rig);
   if (!o.camera_size.empty()) sim::resize_device(scene.camera, parse_size(o.camera_size, "--camera"));
   if (!o.projector_size.empty()) sim::resize_device(scene.projector, parse_size(o.projector_size, "--projector"));
   if (o.supersample) scene.render.supersample = *o.supersample;
+  if (o.dot_spacing) {
+    if (*o.dot_spacing == 1) throw InputError("--dot-spacing must be 0 (Gray code only) or at least 2");
+    scene.capture.dot_spacing = *o.dot_spacing;
+  }
   if (o.seed) scene.render.seed = *o.seed;
   spdlog::info("simulate: scene '{}', camera {}x{}, projector {}x{}, supersample {}x{}, seed {}", scene.name,
                scene.camera.size.width, scene.camera.size.height, scene.projector.size.width,
@@ -49,14 +59,19 @@ void add_simulate_command(CLI::App& app) {
   auto o = std::make_shared<SimulateCommandOptions>();
   auto* command = app.add_subcommand("simulate", "Render a synthetic projector-camera capture with ground truth");
   command->add_option("--scene", o->scene, "Built-in scene name (see --list) or scene JSON file");
+  command->add_option("--rig", o->rig, "Built-in rig (see --list) replacing the scene's camera and projector");
   command->add_option("--out", o->out, "Output directory (must not exist or be empty, unless --force)");
   command->add_option("--seed", o->seed, "Noise seed (default: the scene's render.seed, 1)");
   command->add_flag("--force", o->force, "Replace a non-empty output directory");
-  command->add_flag("--list", o->list, "Print the built-in scenes and exit");
+  command->add_flag("--list", o->list, "Print the built-in scenes and rigs and exit");
   command->add_option("--camera", o->camera_size, "Camera resolution WxH (keeps the field of view)");
   command->add_option("--projector", o->projector_size, "Projector resolution WxH (keeps the field of view)");
   command->add_option("--supersample", o->supersample, "Sub-pixel rays per camera pixel side (default: scene's, 4)")
       ->check(CLI::Range(1, 32));
+  command
+      ->add_option("--dot-spacing", o->dot_spacing,
+                   "Dot grid spacing s of the capture; 0 = Gray code, white and black only (default: the scene's)")
+      ->check(CLI::Range(0, 64));
   command->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   command->callback([o] { run_simulate(*o); });
 }

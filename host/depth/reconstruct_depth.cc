@@ -58,6 +58,11 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
                            const std::string& rig_name, const DepthOptions& options,
                            std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
   if (devices.empty()) throw std::invalid_argument("reconstruct_depth: no device");
+  if (options.method != Method::kTriangulate && transport.setup.dot_spacing == 0) {
+    throw InputError("the " + method_name(options.method) +
+                     " method needs the dot-grid scan (T's full rows for the primal and dual images), and this "
+                     "capture has Gray code only (dot_spacing 0): use --method triangulate, or capture with dots");
+  }
   DepthRun run;
   nlohmann::json& summary = run.summary;
   summary["method"] = method_name(options.method);
@@ -143,7 +148,7 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
     sched::log_reports(reports);
     z_rect_grid = sample_rectified_depth(z_rect, rows, triangulation.rect_cam, options.segmentation.jump_relative);
   }
-  run.maps = camera_frame_maps(z_rect_grid, triangulation.rect_cam, rectified, rig.R1);
+  run.maps = camera_frame_maps(z_rect_grid, triangulation.rect_cam, rectified, rectification.R1);
   fill_confidence(run.maps, z_rect_grid, triangulation, rectified, options);
   clock.lap("camera grid");
   summary["timings"] = clock.timings();

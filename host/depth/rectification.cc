@@ -10,6 +10,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "calib/rectification.h"
 #include "host/core/errors.h"
 #include "host/core/image_file.h"
 #include "host/depth/bilinear.h"
@@ -26,17 +27,18 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 cv::TermCriteria undistort_criteria() { return {cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 50, 1e-12}; }
 
 // A pixel on an occlusion boundary sees both surfaces: its spot mixes theirs and it triangulates onto either, whatever
-// its centre sees. Rejects every pixel with a 3x3 neighbour whose depth differs by more than `relative` of its own
-// (both sides of the boundary, one pixel each).
-void reject_boundary_pixels(CameraGridTriangulation& result, float relative) {
+// its centre sees. Rejects every pixel with a neighbour within `radius` pixels whose depth differs by more than
+// `relative` of its own (both sides of the boundary, `radius` pixels each). Gray-code-only captures need radius 2:
+// there the mixed pixels of a silhouette often fail to decode, leaving a one-pixel gap between the two surfaces.
+void reject_boundary_pixels(CameraGridTriangulation& result, float relative, int radius) {
   const cv::Mat z = result.z_rect_mm.clone();
   for (int y = 0; y < z.rows; ++y) {
     for (int x = 0; x < z.cols; ++x) {
       const float centre = z.at<float>(y, x);
       if (std::isnan(centre)) continue;
       bool boundary = false;
-      for (int yy = std::max(y - 1, 0); yy <= std::min(y + 1, z.rows - 1); ++yy) {
-        for (int xx = std::max(x - 1, 0); xx <= std::min(x + 1, z.cols - 1); ++xx) {
+      for (int yy = std::max(y - radius, 0); yy <= std::min(y + radius, z.rows - 1); ++yy) {
+        for (int xx = std::max(x - radius, 0); xx <= std::min(x + radius, z.cols - 1); ++xx) {
           boundary = boundary || std::abs(z.at<float>(yy, xx) - centre) > relative * centre;  // false for NaN
         }
       }
@@ -52,57 +54,22 @@ void reject_boundary_pixels(CameraGridTriangulation& result, float relative) {
 }  // namespace
 
 Rectification depth_rectification(const calib::StereoRig& rig, const std::string& rig_name) {
-  const auto fail = [&](const std::string& what) {
-    throw InputError(rig_name + ": cannot rectify the rig into rows: " + what);
-  };
-  if (rig.P1.rows != 3 || rig.P1.cols != 4 || rig.P2.rows != 3 || rig.P2.cols != 4 || rig.R1.rows != 3 ||
-      rig.R1.cols != 3 || rig.R2.rows != 3 || rig.R2.cols != 3) {
-    fail("P1, P2 (3x4) and R1, R2 (3x3) are required");
-  }
-  const double f_file = rig.P1.at<double>(0, 0);
-  if (!(f_file > 0.0) || std::abs(rig.P2.at<double>(0, 0) - f_file) > 1e-9 * f_file ||
-      std::abs(rig.P1.at<double>(1, 1) - f_file) > 1e-9 * f_file) {
-    fail("the rectified focal lengths of P1 and P2 differ or are not positive");
-  }
-  if (std::abs(rig.P2.at<double>(1, 3)) > 1e-9 * f_file ||
-      std::abs(rig.P1.at<double>(1, 2) - rig.P2.at<double>(1, 2)) > 1e-6) {
-    fail("the baseline is vertical or the rectified rows do not line up (P2[1][3] != 0 or cy differs)");
-  }
-  const double b = -rig.P2.at<double>(0, 3) / f_file;
-  if (!(std::abs(b) > 1e-6)) fail("the baseline is zero");
-
-  // Extent of a device's image border in rectified coordinates at focal length f and principal point 0.
-  const double f = rig.camera_matrix.at<double>(0, 0);
-  const cv::Matx33d unit_projection(f, 0, 0, 0, f, 0, 0, 0, 1);
-  const auto extent = [&](const cv::Mat& K, const cv::Mat& dist, const cv::Mat& R, cv::Size size) {
-    std::vector<cv::Point2f> border, rectified;
-    for (int x = 0; x < size.width; ++x) {
-      border.emplace_back(static_cast<float>(x), 0.0f);
-      border.emplace_back(static_cast<float>(x), static_cast<float>(size.height - 1));
-    }
-    for (int y = 0; y < size.height; ++y) {
-      border.emplace_back(0.0f, static_cast<float>(y));
-      border.emplace_back(static_cast<float>(size.width - 1), static_cast<float>(y));
-    }
-    cv::undistortPoints(border, rectified, K, dist, R, unit_projection, undistort_criteria());
-    return cv::boundingRect(rectified);
-  };
-  const cv::Rect camera_box = extent(rig.camera_matrix, rig.dist_coeffs, rig.R1, rig.camera_size);
-  const cv::Rect projector_box = extent(rig.projector_matrix, rig.projector_dist_coeffs, rig.R2, rig.projector_size);
-  constexpr int kMaxSide = 1 << 15;
-  if (camera_box.width > kMaxSide || camera_box.height > kMaxSide || projector_box.width > kMaxSide) {
-    fail("the rectified images would be larger than 32768 pixels (devices at a grazing angle to each other?)");
+  calib::RowRectification rows;
+  try {
+    rows = calib::rectify_rig(rig);
+  } catch (const InputError& error) {
+    throw InputError(rig_name + ": cannot rectify the rig into rows: " + error.what());
   }
   Rectification rectification;
-  rectification.rig.f = static_cast<float>(f);
-  rectification.rig.cx_cam = static_cast<float>(-camera_box.x);
-  rectification.rig.cx_proj = static_cast<float>(-projector_box.x);
-  rectification.rig.cy = static_cast<float>(-camera_box.y);
-  rectification.rig.b = static_cast<float>(b);
-  rectification.camera_size = cv::Size(camera_box.width + 1, camera_box.height + 1);
-  rectification.projector_width = projector_box.width + 1;
-  rectification.P1 = (cv::Mat_<double>(3, 4) << f, 0, -camera_box.x, 0, 0, f, -camera_box.y, 0, 0, 0, 1, 0);
-  rectification.P2 = (cv::Mat_<double>(3, 4) << f, 0, -projector_box.x, -f * b, 0, f, -camera_box.y, 0, 0, 0, 1, 0);
+  rectification.rig = {static_cast<float>(rows.f_px), static_cast<float>(rows.cx_cam_px),
+                       static_cast<float>(rows.cx_proj_px), static_cast<float>(rows.cy_px),
+                       static_cast<float>(rows.baseline_mm)};
+  rectification.camera_size = rows.camera_size;
+  rectification.projector_width = rows.projector_size.width;
+  rectification.R1 = cv::Mat(rows.rect_from_cam).clone();
+  rectification.R2 = cv::Mat(rows.rect_from_proj).clone();
+  rectification.P1 = rows.P1;
+  rectification.P2 = rows.P2;
   return rectification;
 }
 
@@ -131,10 +98,10 @@ CameraGridTriangulation triangulate_camera_grid(const transport::CompressedTrans
     }
   }
   std::vector<cv::Point2f> rect_cam, rect_proj;
-  cv::undistortPoints(pixels, rect_cam, rig.camera_matrix, rig.dist_coeffs, rig.R1, rectification.P1,
+  cv::undistortPoints(pixels, rect_cam, rig.camera_matrix, rig.dist_coeffs, rectification.R1, rectification.P1,
                       undistort_criteria());
   if (!correspondences.empty()) {
-    cv::undistortPoints(correspondences, rect_proj, rig.projector_matrix, rig.projector_dist_coeffs, rig.R2,
+    cv::undistortPoints(correspondences, rect_proj, rig.projector_matrix, rig.projector_dist_coeffs, rectification.R2,
                         rectification.P2, undistort_criteria());
   }
   result.rect_cam = cv::Mat(camera_size, CV_32FC2);
@@ -158,7 +125,7 @@ CameraGridTriangulation triangulate_camera_grid(const transport::CompressedTrans
     result.rect_proj_u.at<float>(y, x) = proj.x;
     result.z_rect_mm.at<float>(y, x) = z;
   }
-  reject_boundary_pixels(result, options.boundary_relative);
+  reject_boundary_pixels(result, options.boundary_relative, transport.setup.dot_spacing == 0 ? 2 : 1);
   return result;
 }
 
@@ -207,9 +174,9 @@ RectifiedRows rectify_rows(const transport::CompressedTransport& transport, cons
   rows.height = rectification.camera_size.height;
   rows.proj_width = rectification.projector_width;
   cv::Mat cam_map_x, cam_map_y, proj_map_x, proj_map_y;
-  cv::initUndistortRectifyMap(rig.camera_matrix, rig.dist_coeffs, rig.R1, rectification.P1, rectification.camera_size,
-                              CV_32FC1, cam_map_x, cam_map_y);
-  cv::initUndistortRectifyMap(rig.projector_matrix, rig.projector_dist_coeffs, rig.R2, rectification.P2,
+  cv::initUndistortRectifyMap(rig.camera_matrix, rig.dist_coeffs, rectification.R1, rectification.P1,
+                              rectification.camera_size, CV_32FC1, cam_map_x, cam_map_y);
+  cv::initUndistortRectifyMap(rig.projector_matrix, rig.projector_dist_coeffs, rectification.R2, rectification.P2,
                               cv::Size(rows.proj_width, rows.height), CV_32FC1, proj_map_x, proj_map_y);
   rows.e_cam.assign(rows.pixels(), kNaN);
   rows.z_tri.assign(rows.pixels(), kNaN);

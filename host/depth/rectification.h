@@ -16,20 +16,20 @@ struct RectificationOptions {
   float boundary_relative = 0.01f;     // a depth step this large (relative) to a 3x3 neighbour: an occlusion boundary
 };
 
-// The rectification the depth stage works in: the rotations R1, R2 of rig.yaml (cv::stereoRectify), at the camera's
-// own resolution (rectified focal length = the camera's f_x). rig.yaml's P1, P2 come from stereoRectify with alpha 1,
-// which shrinks the focal length (to 58% on the built-in rig) and would sample the camera image coarser than its
-// pixels. The rectified camera image just holds every camera pixel; the rectified projector image has the same rows
-// and just holds every projector column.
+// The rectification the depth stage works in: calib::rectify_rig, computed from the rig's intrinsics, R and T (the
+// rectification keys of rig.yaml are not read, so a file of any version gives the same rows). Rows are epipolar
+// lines for any baseline direction; the focal length is the finer of the two devices', so neither image is sampled
+// coarser than its pixels.
 struct Rectification {
-  RfRectifiedRig rig{};     // f, principal points (px), projector offset b (mm)
+  RfRectifiedRig rig{};     // f, principal points (px), projector offset b (mm, > 0)
   cv::Size camera_size;     // rectified camera image
   int projector_width = 0;  // rectified projector image width (its rows are the camera's)
+  cv::Mat R1, R2;           // 3x3 CV_64F rotations: rectified from camera, rectified from projector
   cv::Mat P1, P2;           // 3x4 CV_64F projection matrices of the rectified camera and projector
 };
 
-// Throws InputError naming `rig_name` when the rig cannot be rectified into rows: missing or degenerate R1, R2, P1,
-// P2, a vertical baseline, rows that do not line up, or a rectified image of absurd size.
+// Throws InputError naming `rig_name` and the key when the rig cannot be rectified into rows (degenerate baseline,
+// devices facing away or at a grazing angle to each other).
 Rectification depth_rectification(const calib::StereoRig& rig, const std::string& rig_name);
 
 // Per original camera pixel: triangulation of its correspondence through the rectified rig.

@@ -12,6 +12,7 @@
 #include "host/pipeline/calibrate_rig.h"
 #include "host/pipeline/reconstruct_scan.h"
 #include "host/pipeline/transport_capture.h"
+#include "sim/builtin_rigs.h"
 #include "sim/builtin_scenes.h"
 #include "sim/simulate.h"
 
@@ -23,9 +24,9 @@ namespace {
 constexpr const char* kPosesScene = "checkerboard-poses";
 constexpr const char* kObjectScene = "cube-anisotropic";
 
-void render(const std::string& scene, const fs::path& out_dir) {
-  spdlog::info("demo: render {} into {}", scene, out_dir.string());
-  sim::simulate(sim::resolve_scene(scene), out_dir, {0, true});
+void render(const std::string& scene, const std::string& rig, const fs::path& out_dir) {
+  spdlog::info("demo: render {} on the {} rig into {}", scene, rig, out_dir.string());
+  sim::simulate(sim::resolve_scene(scene, rig), out_dir, {0, true});
 }
 
 std::vector<fs::path> pose_dirs(const fs::path& rendering) {
@@ -39,24 +40,27 @@ std::vector<fs::path> pose_dirs(const fs::path& rendering) {
 }
 }  // namespace
 
-DemoRun run_demo(const fs::path& out_dir, std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
+DemoRun run_demo(const fs::path& out_dir, const std::string& rig, std::vector<cl::DeviceContext>& devices,
+                 cl::ProgramCache& programs) {
   const auto start = std::chrono::steady_clock::now();
   DemoRun demo;
   demo.scene = kObjectScene;
+  demo.rig = rig.empty() ? sim::kDefaultRig : rig;
   demo.out_dir = out_dir;
   const fs::path poses = out_dir / kPosesScene, cube = out_dir / kObjectScene;
 
-  render(kPosesScene, poses);
+  render(kPosesScene, demo.rig, poses);
   RigCalibrationRequest calibration;
   calibration.pose_dirs = pose_dirs(poses);
   calibration.board = {9, 6, 30.0};
   calibration.output = out_dir / "rig.yaml";
   calibration.report_dir = calib::default_report_dir(calibration.output);
   spdlog::info("demo: calibrate camera and projector from {} poses", calibration.pose_dirs.size());
-  const auto rig = calibrate_rig(calibration, devices, programs);
-  spdlog::info("demo: stereo reprojection RMS {:.4f} px over {} poses", rig.calibration.rig.rms, rig.view_names.size());
+  const auto calibrated = calibrate_rig(calibration, devices, programs);
+  spdlog::info("demo: stereo reprojection RMS {:.4f} px over {} poses", calibrated.calibration.rig.rms,
+               calibrated.view_names.size());
 
-  render(kObjectScene, cube);
+  render(kObjectScene, demo.rig, cube);
   TransportRequest transport;
   transport.capture_dir = cube / "capture";
   transport.output = cube / "T.h5";
@@ -91,6 +95,7 @@ DemoRun run_demo(const fs::path& out_dir, std::vector<cl::DeviceContext>& device
   }
   demo.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_file_atomically(out_dir / "demo.json", nlohmann::json{{"scene", demo.scene},
+                                                              {"rig", demo.rig},
                                                               {"calibration", calibration.output.string()},
                                                               {"seconds", demo.seconds},
                                                               {"methods", table}}

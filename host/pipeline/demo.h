@@ -23,6 +23,7 @@ struct DemoRow {
 
 struct DemoRun {
   std::string scene;
+  std::string rig;
   double object_size_mm = 0.0;
   std::vector<DemoRow> methods;  // triangulate, integrate, fused
   double seconds = 0.0;
@@ -31,7 +32,8 @@ struct DemoRun {
 
 // Writes OUT/checkerboard-poses/, OUT/rig.yaml (+ report), OUT/cube-anisotropic/ (with T.h5), OUT/METHOD/ per method
 // (with evaluation.json and error_map.png) and OUT/demo.json; each replaces an earlier demo's.
-DemoRun run_demo(const std::filesystem::path& out_dir, std::vector<cl::DeviceContext>& devices,
+// `rig` names a built-in rig (sim/builtin_rigs.h); empty = the scenes' default.
+DemoRun run_demo(const std::filesystem::path& out_dir, const std::string& rig, std::vector<cl::DeviceContext>& devices,
                  cl::ProgramCache& programs);
 
 }  // namespace rfrecon::pipeline

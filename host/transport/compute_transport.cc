@@ -4,12 +4,14 @@
 #include <chrono>
 #include <future>
 #include <map>
+#include <optional>
 #include <utility>
 
 #include "host/core/errors.h"
 #include "host/core/progress.h"
 #include "host/core/stage_clock.h"
 #include "host/sched/block_runner.h"
+#include "host/transport/gray_subpixel.h"
 
 namespace rfrecon::transport {
 
@@ -147,6 +149,26 @@ OpenedCapture open_frames(const fs::path& capture_dir, capture::CaptureManifest 
   return opened;
 }
 
+// Sub-pixel correspondences of Gray-code-only captures (GraySubpixel), on the host for both paths alike; captures
+// with the dot grid keep their dot centroids. Timed as the stage "subpixel".
+class SubpixelGray {
+ public:
+  SubpixelGray(const TransportSetup& setup, StageClock& clock) : clock_(clock) {
+    if (setup.dot_spacing == 0) gray_.emplace(setup.camera_size);
+  }
+  void add(const Step& step, const std::vector<cv::Mat>& frames) {
+    if (!gray_ || step.kind != Step::Kind::kGrayPair) return;
+    clock_.time("subpixel", [&] { gray_->add_gray_pair(step.axis, frames[0], frames[1]); });
+  }
+  void refine(CompressedTransport& transport) const {
+    if (gray_) clock_.time("subpixel", [&] { gray_->refine(transport); });
+  }
+
+ private:
+  StageClock& clock_;
+  std::optional<GraySubpixel> gray_;
+};
+
 // The transport stage's side of the block runner: one device accumulator per camera row block.
 class TransportBlocks final : public sched::BlockTask {
  public:
@@ -239,6 +261,7 @@ TransportRun compute_transport(const fs::path& capture_dir, capture::CaptureMani
   };
   const OpenedCapture capture = open_frames(capture_dir, std::move(manifest), setup, load);
   auto accumulator = clock.time("setup", [&] { return make_accumulator(capture.setup); });
+  SubpixelGray subpixel(capture.setup, clock);
   TransportRun run;
   for (const Step& step : plan_steps(capture.index, capture.manifest)) {
     if (step.kind == Step::Kind::kFinish) {
@@ -248,7 +271,9 @@ TransportRun compute_transport(const fs::path& capture_dir, capture::CaptureMani
     std::vector<cv::Mat> frames;
     for (const std::size_t i : step.frames) frames.push_back(load(capture.manifest, i));
     clock.time(step.stage(), [&] { apply(*accumulator, step, frames, capture.white, capture.black); });
+    subpixel.add(step, frames);
   }
+  subpixel.refine(run.transport);
   run.timings = clock.timings();
   return run;
 }
@@ -281,15 +306,19 @@ TransportRun compute_transport_on_devices(const fs::path& capture_dir, capture::
     }
     return frames;
   };
+  SubpixelGray subpixel(capture.setup, clock);
   auto next = std::async(std::launch::async, read_step, 0);
   for (std::size_t i = 0; i < steps.size(); ++i) {
-    task.set_frames(clock.time("read frames", [&] { return next.get(); }));
+    std::vector<cv::Mat> frames = clock.time("read frames", [&] { return next.get(); });
     progress.advance(steps[i].frames.size());
     next = std::async(std::launch::async, read_step, i + 1);
+    subpixel.add(steps[i], frames);
+    task.set_frames(std::move(frames));
     clock.time(steps[i].stage(), [&] { runner.run_step(i, steps[i].stage()); });
   }
   TransportRun run;
   run.transport = clock.time("finalize", [&] { return task.assemble(); });
+  subpixel.refine(run.transport);
   run.timings = clock.timings();
   run.schedule = runner.reports();
   return run;

@@ -1,6 +1,9 @@
 // `rfrecon reconstruct` on bad input: each case ends with its documented exit code and a message naming the
 // problem, and leaves no output directory behind.
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -23,6 +26,7 @@ class ReconstructCliTest : public ::testing::Test {
     // An 80x60 T in which no camera pixel has a correspondence, and the true rig of an 80x60 rig.
     transport::TransportSetup setup;
     setup.camera_size = setup.projector_size = cv::Size(80, 60);
+    setup.dot_spacing = 8;
     transport::write_transport(transport::make_empty_transport(setup), dir_ / "T.h5");
     small_rig_ = sim::true_rig(sim::testing::make_scene(
         sim::testing::small_rig({sim::testing::tilted_plane({{"brdf", "lambert"}, {"diffuse", 0.5}})})));
@@ -53,13 +57,24 @@ TEST_F(ReconstructCliTest, CalibrationOfAnotherSizeIsAnInputError) {
   EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
-TEST_F(ReconstructCliTest, CalibrationThatCannotBeRectifiedIsAnInputError) {
-  calib::StereoRig vertical = small_rig_;
-  vertical.P2.at<double>(1, 3) = -100.0 * vertical.P2.at<double>(1, 1);  // a vertical baseline
-  calib::write_rig(vertical, dir_ / "vertical.yaml");
-  const auto result = reconstruct(dir_ / "vertical.yaml");
+TEST_F(ReconstructCliTest, DegenerateCalibrationIsAnInputErrorNamingTheKey) {
+  calib::StereoRig no_baseline = small_rig_;
+  no_baseline.T = cv::Mat::zeros(3, 1, CV_64F);  // camera and projector centres coincide
+  calib::write_rig(no_baseline, dir_ / "no_baseline.yaml");
+  auto result = reconstruct(dir_ / "no_baseline.yaml");
   EXPECT_EQ(result.exit_code, 3) << result.output;
-  EXPECT_NE(result.output.find("vertical.yaml: cannot rectify"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("no_baseline.yaml: key 'T'"), std::string::npos) << result.output;
+
+  // A NaN focal length, written as OpenCV writes it.
+  std::ifstream in(dir_ / "rig.yaml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto data = text.find("data: [", text.find("camera_matrix:")) + 8;
+  text.replace(data, text.find(',', data) - data, ".nan");
+  std::ofstream(dir_ / "nan.yaml") << text;
+  result = reconstruct(dir_ / "nan.yaml");
+  EXPECT_EQ(result.exit_code, 3) << result.output;
+  EXPECT_NE(result.output.find("nan.yaml: key 'camera_matrix' holds a value that is not finite"), std::string::npos)
+      << result.output;
   EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 

@@ -53,7 +53,7 @@ TEST(CheckerboardTest, OpenCvFindsCornersWhereTheModelProjectsThem) {
   // bias (measured mean offset 0.009 px): max 0.4 px, and a mean offset below 0.03 px, which a half-pixel slip in
   // either device's pixel convention would break.
   Scene scene = scene_for_view(builtin_scene("checkerboard-poses"), 1);
-  resize_device(scene.camera, {320, 240});  // half size keeps the test fast; squares are still ~13 px
+  resize_device(scene.camera, {320, 256});  // half size keeps the test fast; squares are still ~13 px
   RenderOptions options = scene.render;
   options.supersample = 3;
   const auto T = render_transport(scene, options).T;

@@ -108,7 +108,7 @@ TEST_F(RigFileTest, MissingOrMisSizedKeyIsNamed) {
     out.erase(start, end + 1 - start);
     return out;
   };
-  expect_error(without("Q"), "'Q'");
+  expect_error(without("R"), "'R'");  // E, F and the rectification are derived from R and T: not required
   expect_error(without("projector_matrix"), "'projector_matrix'");
   std::string bad_t = text;
   const std::string column = "T: !!opencv-matrix\n   rows: 3\n   cols: 1";

@@ -113,6 +113,33 @@ TEST_F(TransportKernelTest, StreamingFromDiskEqualsAllFramesInMemory) {
   expect_same_transport(run.transport, expected);
 }
 
+// Gray-code-only captures: the sub-pixel correspondences are computed on the host from the same frames on both
+// paths, so they are equal exactly (NaN where none).
+TEST_F(TransportKernelTest, GrayCodeOnlyCorrespondencesOnDevicesEqualReferenceExactly) {
+  const auto capture = tiny_capture(0);
+  testing::TempDir dir("gray_devices");
+  testing::write_capture(dir.path(), capture.scene, capture.sequence, 0, capture.frames);
+  const auto setup = testing::setup_for(testing::linearize(capture.frames), capture.scene.projector_size, 0, 2);
+  const auto reference = compute_transport(dir.path(), capture::read_manifest(dir.path()), setup,
+                                           [](const auto& s) { return make_reference_accumulator(s); });
+  const auto on_devices = compute_transport_on_devices(dir.path(), capture::read_manifest(dir.path()), setup, devices_,
+                                                       programs_, KernelEntry::kNdRange);
+  const auto& expected = reference.transport.correspondence;
+  const auto& got = on_devices.transport.correspondence;
+  ASSERT_EQ(got.size(), expected.size());
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    // The kernels' NaN may differ from the host's in its bits.
+    if (std::isnan(expected[i])) {
+      EXPECT_TRUE(std::isnan(got[i])) << i;
+    } else {
+      EXPECT_EQ(got[i], expected[i]) << i;
+    }
+  }
+  std::size_t fractional = 0;
+  for (const float xy : expected) fractional += !std::isnan(xy) && xy != std::round(xy) ? 1 : 0;
+  EXPECT_GT(fractional, 0u) << "the tiny capture must have refined correspondences";
+}
+
 TEST_F(TransportKernelTest, PrimalAndDualMatchReferenceAndDenseProduct) {
   const auto capture = tiny_capture(3);
   const auto linear = testing::linearize(capture.frames);

