@@ -19,10 +19,6 @@ constexpr double kMinBaselineMm = 1e-2;
 // sin of the smallest angle between the baseline and the mean viewing direction.
 constexpr double kMinBaselineAngleSin = 0.1;
 
-// Undistortion to tight tolerance: the default 5 iterations of cv::undistortPoints leave ~1e-3 px at the corners of
-// a lens with k1 = -0.08.
-cv::TermCriteria undistort_criteria() { return {cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 50, 1e-12}; }
-
 // Bounding box of a device's image border in a rectified frame at focal length f and principal point 0.
 cv::Rect2d rectified_extent(const cv::Mat& K, const cv::Mat& dist, const cv::Matx33d& rect_from_device, cv::Size size,
                             double f) {
@@ -50,6 +46,8 @@ cv::Rect2d rectified_extent(const cv::Mat& K, const cv::Mat& dist, const cv::Mat
 double largest_focal(const cv::Mat& K) { return std::max(K.at<double>(0, 0), K.at<double>(1, 1)); }
 
 }  // namespace
+
+cv::TermCriteria undistort_criteria() { return {cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 50, 1e-12}; }
 
 RowRectification rectify_rig(const StereoRig& rig) {
   const auto fail = [](const std::string& key, const std::string& what) {

@@ -27,6 +27,10 @@ struct RowRectification {
   cv::Mat Q;                   // 4x4 CV_64F disparity-to-depth matrix (cv::reprojectImageTo3D)
 };
 
+// Undistortion to tight tolerance for cv::undistortPoints: its default 5 iterations leave ~1e-3 px at the corners of
+// a lens with k1 = -0.08, which is a visible depth error.
+cv::TermCriteria undistort_criteria();
+
 // Largest side of a rectified image; a rig needing more has devices at a grazing angle to each other.
 inline constexpr int kMaxRectifiedSide = 1 << 15;
 

@@ -130,6 +130,14 @@ const Builtin kBuiltins[] = {
     {"checkerboard-poses", "9x6-corner checkerboard (30 mm squares) at 10 poses, for calibration", checkerboard_poses},
     {"board-plane", "the checkerboard at one pose not among checkerboard-poses, for flatness and scale", board_plane},
 };
+
+// The built-in scene names, comma-separated, for messages.
+std::string known_scenes() {
+  std::string known;
+  for (const auto& b : kBuiltins) known += known.empty() ? b.name : std::string(", ") + b.name;
+  return known;
+}
+
 }  // namespace
 
 std::vector<BuiltinSceneInfo> builtin_scenes() {
@@ -139,13 +147,11 @@ std::vector<BuiltinSceneInfo> builtin_scenes() {
 }
 
 Scene builtin_scene(const std::string& name, const std::string& rig) {
-  std::string known;
   for (const auto& b : kBuiltins) {
     if (name == b.name)
       return scene_from_json(rig.empty() ? b.make() : with_rig(b.make(), rig), "scene '" + name + "'", {});
-    known += known.empty() ? b.name : std::string(", ") + b.name;
   }
-  throw InputError("unknown scene '" + name + "' (built-in scenes: " + known + ")");
+  throw InputError("unknown scene '" + name + "' (built-in scenes: " + known_scenes() + ")");
 }
 
 Scene resolve_scene(const std::string& name_or_file, const std::string& rig) {
@@ -157,9 +163,8 @@ Scene resolve_scene(const std::string& name_or_file, const std::string& rig) {
     const json scene = read_json_file(file);
     return scene_from_json(rig.empty() ? scene : with_rig(scene, rig), file.string(), file.parent_path());
   }
-  std::string known;
-  for (const auto& b : kBuiltins) known += known.empty() ? b.name : std::string(", ") + b.name;
-  throw InputError("--scene '" + name_or_file + "' is neither a built-in scene (" + known + ") nor a scene file");
+  throw InputError("--scene '" + name_or_file + "' is neither a built-in scene (" + known_scenes() +
+                   ") nor a scene file");
 }
 
 }  // namespace rfrecon::sim

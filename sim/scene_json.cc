@@ -336,8 +336,9 @@ Scene scene_from_json(const json& root, const std::string& source, const fs::pat
   json devices = root;
   if (root.contains("rig")) {
     if (root.contains("camera") || root.contains("projector")) r.fail("rig", "give either rig or camera and projector");
+    const auto rig = r.get<std::string>(root, "", "rig");
     try {
-      devices = builtin_rig(r.get<std::string>(root, "", "rig"));
+      devices = builtin_rig(rig);
     } catch (const InputError& error) {
       r.fail("rig", error.what());
     }

@@ -22,10 +22,6 @@ namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
-// Undistortion to tight tolerance: the default 5 iterations of cv::undistortPoints leave ~1e-3 px at the corners of
-// a lens with k1 = -0.08, which is a visible depth error.
-cv::TermCriteria undistort_criteria() { return {cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 50, 1e-12}; }
-
 // A pixel on an occlusion boundary sees both surfaces: its spot mixes theirs and it triangulates onto either, whatever
 // its centre sees. Rejects every pixel with a neighbour within `radius` pixels whose depth differs by more than
 // `relative` of its own (both sides of the boundary, `radius` pixels each). Gray-code-only captures need radius 2:
@@ -99,10 +95,10 @@ CameraGridTriangulation triangulate_camera_grid(const transport::CompressedTrans
   }
   std::vector<cv::Point2f> rect_cam, rect_proj;
   cv::undistortPoints(pixels, rect_cam, rig.camera_matrix, rig.dist_coeffs, rectification.R1, rectification.P1,
-                      undistort_criteria());
+                      calib::undistort_criteria());
   if (!correspondences.empty()) {
     cv::undistortPoints(correspondences, rect_proj, rig.projector_matrix, rig.projector_dist_coeffs, rectification.R2,
-                        rectification.P2, undistort_criteria());
+                        rectification.P2, calib::undistort_criteria());
   }
   result.rect_cam = cv::Mat(camera_size, CV_32FC2);
   std::copy(rect_cam.begin(), rect_cam.end(), result.rect_cam.begin<cv::Vec2f>());
