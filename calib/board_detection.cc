@@ -65,18 +65,55 @@ float square_size_px(const std::vector<cv::Point2f>& corners, const BoardSpec& b
   return steps[steps.size() / 2];
 }
 
+// The saddle point of a weighted quadratic fit to `image` around `corner`, iterated from it; the corner is kept
+// where the surface is not a saddle or the step leaves the fit window.
+cv::Point2f saddle_point(const cv::Mat& image, cv::Point2f corner) {
+  const int half = static_cast<int>(std::ceil(kSaddleFitRadiusPx)) + 1;
+  const double sigma = kSaddleFitRadiusPx / 2.0;
+  cv::Point2d p(corner);
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    const int x0 = static_cast<int>(std::lround(p.x));
+    const int y0 = static_cast<int>(std::lround(p.y));
+    if (x0 - half < 0 || y0 - half < 0 || x0 + half >= image.cols || y0 + half >= image.rows) break;
+    cv::Matx66d normal = cv::Matx66d::zeros();
+    cv::Vec6d rhs = cv::Vec6d::all(0.0);
+    for (int y = y0 - half; y <= y0 + half; ++y) {
+      for (int x = x0 - half; x <= x0 + half; ++x) {
+        const double dx = x - p.x;
+        const double dy = y - p.y;
+        const double w = std::exp(-(dx * dx + dy * dy) / (2.0 * sigma * sigma));
+        const cv::Vec6d a(dx * dx, dx * dy, dy * dy, dx, dy, 1.0);
+        normal += w * (a * a.t());
+        rhs += w * static_cast<double>(image.at<float>(y, x)) * a;
+      }
+    }
+    cv::Vec6d q;
+    if (!cv::solve(normal, rhs, q, cv::DECOMP_CHOLESKY)) break;
+    // z = q0 dx^2 + q1 dx dy + q2 dy^2 + q3 dx + q4 dy + q5: gradient zero where H s = -(q3, q4).
+    const cv::Matx22d hessian(2.0 * q[0], q[1], q[1], 2.0 * q[2]);
+    const double det = cv::determinant(hessian);
+    if (det >= 0.0) break;  // not a saddle
+    const cv::Vec2d step = -(hessian.inv() * cv::Vec2d(q[3], q[4]));
+    const double length = std::hypot(step[0], step[1]);
+    if (length > kSaddleFitRadiusPx) break;
+    p += cv::Point2d(step[0], step[1]);
+    if (length < 1e-4) break;
+  }
+  return cv::Point2f(p);
+}
+
 // Both detectors work on the 8-bit image and, on the rendered poses (shot noise, light falling off across the
-// board), leave offsets of up to 0.2 px in each pose's mean corner that change with the board's tilt, which bias the
-// calibrated focal lengths by 0.1-0.2 %. cornerSubPix on the full-precision image, slightly blurred, removes most of
-// them (docs/calibration.md).
+// board), leave offsets of up to 0.2 px in each pose's mean corner that change with the board's tilt; cornerSubPix
+// with a window of a fixed share of the median square reaches into neighbouring squares on foreshortened real
+// boards. The saddle fit on the full-precision image does neither (docs/calibration.md).
 void refine_on_float_image(const cv::Mat& image, const BoardSpec& board, std::vector<cv::Point2f>& corners) {
   cv::Mat gray = float_gray(image);
   cv::patchNaNs(gray, 0.0);
+  cv::Mat illumination;
+  cv::GaussianBlur(gray, illumination, cv::Size(), kRefineHighPassSquares * square_size_px(corners, board));
+  gray -= illumination;
   cv::GaussianBlur(gray, gray, cv::Size(), kRefineBlurSigmaPx);
-  const int half_window =
-      std::max(2, static_cast<int>(std::lround(kRefineWindowSquares * square_size_px(corners, board))));
-  cv::cornerSubPix(gray, corners, cv::Size(half_window, half_window), cv::Size(-1, -1),
-                   cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 100, 1e-5));
+  for (auto& corner : corners) corner = saddle_point(gray, corner);
 }
 
 // Either detector's corners, or none.

@@ -1,32 +1,14 @@
 // Camera calibration with cv::calibrateCamera and its checks and output.
 #include "calib/camera_calibration.h"
 
-#include <cmath>
-
 #include <opencv2/calib3d.hpp>
 
 #include "calib/board_detection.h"
+#include "calib/pose_diversity.h"
 #include "host/core/atomic_file.h"
 #include "host/core/errors.h"
 
 namespace rfrecon::calib {
-
-double board_tilt_spread_deg(const std::vector<cv::Mat>& board_rotations) {
-  std::vector<cv::Vec3d> normals;
-  for (const auto& rvec : board_rotations) {
-    cv::Matx33d rotation;
-    cv::Rodrigues(rvec, rotation);
-    normals.emplace_back(rotation(0, 2), rotation(1, 2), rotation(2, 2));
-  }
-  double spread = 0.0;
-  for (std::size_t i = 0; i < normals.size(); ++i) {
-    for (std::size_t j = i + 1; j < normals.size(); ++j) {
-      const double cosine = std::clamp(std::abs(normals[i].dot(normals[j])), 0.0, 1.0);
-      spread = std::max(spread, std::acos(cosine) * 180.0 / M_PI);
-    }
-  }
-  return spread;
-}
 
 CameraCalibration calibrate_camera(const std::vector<BoardView>& views, const BoardSpec& board, cv::Size image_size,
                                    const CalibrationOptions& options) {
@@ -45,21 +27,53 @@ CameraCalibration calibrate_camera(const std::vector<BoardView>& views, const Bo
   result.image_size = image_size;
   result.board = board;
   result.camera_matrix = cv::Mat::eye(3, 3, CV_64F);
-  result.dist_coeffs = cv::Mat::zeros(1, 5, CV_64F);
+  result.dist_coeffs = cv::Mat::zeros(1, distortion_vector_size(options.distortion), CV_64F);
+  std::vector<cv::Mat> rvecs;
+  std::vector<cv::Mat> tvecs;
   cv::Mat per_view;
   cv::Mat std_intrinsics;
   cv::Mat std_extrinsics;
-  const int flags = options.full_distortion ? 0 : cv::CALIB_FIX_K3;
-  result.rms =
-      cv::calibrateCamera(object_points, image_points, image_size, result.camera_matrix, result.dist_coeffs,
-                          result.board_rotations, result.board_translations, std_intrinsics, std_extrinsics, per_view,
-                          flags, cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-12));
+  const int flags = distortion_flags(options.distortion);
+  const cv::TermCriteria criteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-12);
+  if (options.refine_board) {
+    cv::Mat new_object;
+    cv::Mat std_object;
+    result.rms = cv::calibrateCameraRO(object_points, image_points, image_size, board.cols - 1, result.camera_matrix,
+                                       result.dist_coeffs, rvecs, tvecs, new_object, std_intrinsics, std_extrinsics,
+                                       std_object, per_view, flags, criteria);
+    result.board_points.assign(new_object.begin<cv::Point3f>(), new_object.end<cv::Point3f>());
+  } else {
+    result.rms = cv::calibrateCamera(object_points, image_points, image_size, result.camera_matrix, result.dist_coeffs,
+                                     rvecs, tvecs, std_intrinsics, std_extrinsics, per_view, flags, criteria);
+    result.board_points = object;
+  }
   result.per_view_errors.assign(per_view.begin<double>(), per_view.end<double>());
-  const double spread = board_tilt_spread_deg(result.board_rotations);
-  if (spread < options.min_tilt_spread_deg) {
-    throw ProcessingError("degenerate board poses: all board normals lie within " + std::to_string(spread) +
-                          " degrees of each other (need at least " + std::to_string(options.min_tilt_spread_deg) +
+  for (std::size_t i = 0; i < rvecs.size(); ++i) {
+    result.board_rvecs.emplace_back(rvecs[i]);
+    result.board_tvecs.emplace_back(tvecs[i]);
+    std::vector<cv::Point2d> projected;
+    const std::vector<cv::Point3d> board_points(result.board_points.begin(), result.board_points.end());
+    cv::projectPoints(board_points, rvecs[i], tvecs[i], result.camera_matrix, result.dist_coeffs, projected);
+    std::vector<cv::Point2d> residuals;
+    for (std::size_t k = 0; k < projected.size(); ++k) {
+      residuals.emplace_back(projected[k].x - image_points[i][k].x, projected[k].y - image_points[i][k].y);
+    }
+    result.residuals_px.push_back(std::move(residuals));
+  }
+  result.intrinsics_std = std_intrinsics.rowRange(0, 4).reshape(1, 1).clone();
+  result.dist_coeffs_std =
+      std_intrinsics.rowRange(4, 4 + static_cast<int>(result.dist_coeffs.total())).reshape(1, 1).clone();
+  result.tilt_spread_deg = board_tilt_spread_deg(result.board_rvecs);
+  if (result.tilt_spread_deg < options.min_tilt_spread_deg) {
+    throw ProcessingError("degenerate board poses: all board normals lie within " +
+                          std::to_string(result.tilt_spread_deg) + " degrees of each other (need at least " +
+                          std::to_string(options.min_tilt_spread_deg) +
                           "); tilt the board differently in some views so the focal length is observable");
+  }
+  result.coverage = covered_fraction(board_coverage_counts(image_points, board, image_size));
+  result.warnings = pose_set_warnings(static_cast<int>(views.size()), result.tilt_spread_deg);
+  if (auto warning = coverage_warning("camera", result.coverage); !warning.empty()) {
+    result.warnings.push_back(std::move(warning));
   }
   return result;
 }
@@ -68,6 +82,7 @@ void write_camera_calibration(const CameraCalibration& calibration, const std::f
   cv::FileStorage fs("camera.yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
   fs << "image_size" << calibration.image_size;
   fs << "camera_matrix" << calibration.camera_matrix << "dist_coeffs" << calibration.dist_coeffs;
+  fs << "intrinsics_std" << calibration.intrinsics_std << "dist_coeffs_std" << calibration.dist_coeffs_std;
   fs << "rms" << calibration.rms << "per_view_errors" << calibration.per_view_errors;
   fs << "views" << calibration.view_names;
   fs << "board"

@@ -7,6 +7,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "calib/distortion_model.h"
 #include "calib/rig.h"
 
 namespace rfrecon::calib {
@@ -19,32 +20,40 @@ struct BoardView {
 
 struct CameraCalibration {
   cv::Size image_size;
-  cv::Mat camera_matrix;                // 3x3, CV_64F
-  cv::Mat dist_coeffs;                  // 1x5 k1 k2 p1 p2 k3 (k3 fixed at 0 unless full distortion was asked for)
-  double rms = 0.0;                     // px over all corners
-  std::vector<double> per_view_errors;  // px RMS per view
+  cv::Mat camera_matrix;                               // 3x3, CV_64F
+  cv::Mat dist_coeffs;                                 // 1x5 k1 k2 p1 p2 k3, or 1x8 for the rational model
+  cv::Mat intrinsics_std;                              // 1x4: one standard deviation of fx, fy, cx, cy (px)
+  cv::Mat dist_coeffs_std;                             // as dist_coeffs; 0 for coefficients held fixed
+  double rms = 0.0;                                    // px over all corners
+  std::vector<double> per_view_errors;                 // px RMS per view
+  std::vector<std::vector<cv::Point2d>> residuals_px;  // projected - detected, per view and corner
   std::vector<std::string> view_names;
-  std::vector<cv::Mat> board_rotations;     // Rodrigues vectors: board frame to camera frame, per view
-  std::vector<cv::Mat> board_translations;  // mm, per view
+  std::vector<cv::Vec3d> board_rvecs;     // board frame to camera frame, per view
+  std::vector<cv::Vec3d> board_tvecs;     // mm, per view
+  std::vector<cv::Point3f> board_points;  // the board's corners (mm): nominal, or refined with refine_board
+  double tilt_spread_deg = 0.0;           // largest angle between two views' board normals
+  double coverage = 0.0;                  // fraction of the image the boards cover (calib/pose_diversity.h)
+  std::vector<std::string> warnings;      // pose-set warnings (too few, too frontal, poor coverage)
   BoardSpec board;
 };
 
 struct CalibrationOptions {
-  bool full_distortion = false;  // estimate k3 too (wide-angle lenses); otherwise k3 = 0, which is more stable
+  DistortionModel distortion = DistortionModel::standard;
+  // Also estimate the board's corners (cv::calibrateCameraRO, fixing the first and last corner of the first row and
+  // the square size): for a board that is not perfectly flat. Needs many poses.
+  bool refine_board = false;
   int min_views = 3;
   double min_tilt_spread_deg = 5.0;  // the board normals must span at least this angle (else focal is unobservable)
 };
 
-// cv::calibrateCamera over the views. Throws ProcessingError when there are fewer than min_views views, or when the
-// poses are degenerate (all board normals within min_tilt_spread_deg of each other: e.g. all fronto-parallel).
+// cv::calibrateCamera (calibrateCameraRO with refine_board) over the views, with the standard deviations of the
+// intrinsics. Throws ProcessingError when there are fewer than min_views views, or when the poses are degenerate (all
+// board normals within min_tilt_spread_deg of each other: e.g. all fronto-parallel).
 CameraCalibration calibrate_camera(const std::vector<BoardView>& views, const BoardSpec& board, cv::Size image_size,
                                    const CalibrationOptions& options = {});
 
-// The largest angle between two board normals of a calibration, in degrees.
-double board_tilt_spread_deg(const std::vector<cv::Mat>& board_rotations);
-
-// Writes an OpenCV FileStorage YAML (image_size, camera_matrix, dist_coeffs, rms, per_view_errors, views, board)
-// atomically.
+// Writes an OpenCV FileStorage YAML (image_size, camera_matrix, dist_coeffs, their standard deviations, rms,
+// per_view_errors, views, board) atomically.
 void write_camera_calibration(const CameraCalibration& calibration, const std::filesystem::path& file);
 
 }  // namespace rfrecon::calib

@@ -8,6 +8,7 @@
 
 #include "calib/board_detection.h"
 #include "calib/report.h"
+#include "calib/report_files.h"
 #include "host/core/atomic_file.h"
 #include "host/core/errors.h"
 #include "host/core/image_file.h"
@@ -61,8 +62,8 @@ CameraImagesRun calibrate_camera_from_images(const CameraImagesRequest& request)
   }
   run.calibration =
       keeping_report(report, [&] { return calibrate_camera(views, request.board, image_size, request.options); });
-  write_image(report.path() / "errors.png",
-              draw_error_chart(run.calibration.view_names, {"camera"}, {run.calibration.per_view_errors}));
+  for (const auto& warning : run.calibration.warnings) spdlog::warn("calibrate-camera: {}", warning);
+  write_camera_report(report.path(), run.calibration, views);
   write_camera_calibration(run.calibration, request.output);
   report.commit();
   return run;

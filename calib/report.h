@@ -1,5 +1,5 @@
-// The visual calibration report: detected corners over camera and dual images, a per-view error chart (PNG), and
-// the rule that the report survives a failed calibration.
+// The visual calibration report: detected corners over camera and dual images, a per-view error chart, residual
+// plots per view and coverage maps (PNG), and the rule that the report survives a failed calibration.
 #pragma once
 
 #include <filesystem>
@@ -22,6 +22,16 @@ cv::Mat draw_corners(const cv::Mat& image, const calib::BoardSpec& board, const 
 // projector), with a scale in pixels.
 cv::Mat draw_error_chart(const std::vector<std::string>& view_names, const std::vector<std::string>& series_names,
                          const std::vector<std::vector<double>>& series_errors_px);
+
+// The reprojection residuals (projected - detected, px) of each view as a scatter panel, all panels at one scale,
+// with the view's name and RMS; `title` names the device.
+cv::Mat draw_residuals(const std::vector<std::string>& view_names,
+                       const std::vector<std::vector<cv::Point2d>>& residuals_px, const std::string& title);
+
+// How many boards cover each pixel (calib/pose_diversity.h), as a colour map with every corner drawn and the covered
+// fraction written on it: where the map is dark, no pose constrains the lens model.
+cv::Mat draw_coverage_map(const std::vector<std::vector<cv::Point2f>>& corners, const BoardSpec& board,
+                          cv::Size image_size, const std::string& title);
 
 // Runs a calibration step; when it cannot process the views, the report (corner images) is still committed, so the
 // user can see which boards were found, and the ProcessingError names it. No calibration file is written then.

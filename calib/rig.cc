@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <string>
+#include <tuple>
 
 #include "calib/rectification.h"
 #include "host/core/atomic_file.h"
@@ -137,6 +138,13 @@ void write_rig(const StereoRig& rig, const fs::path& file) {
   fs << "rectified_camera_size" << rig.rectified_camera_size << "rectified_projector_size"
      << rig.rectified_projector_size;
   fs << "rms" << rig.rms << "per_view_errors" << rig.per_view_errors;
+  if (!rig.uncertainty.empty()) {
+    const RigUncertainty& u = rig.uncertainty;
+    fs << "camera_intrinsics_std" << u.camera_intrinsics << "dist_coeffs_std" << u.camera_dist_coeffs;
+    fs << "projector_intrinsics_std" << u.projector_intrinsics << "projector_dist_coeffs_std"
+       << u.projector_dist_coeffs;
+    fs << "om_std" << u.om << "T_std" << u.T;
+  }
   fs << "board"
      << "{"
      << "cols" << rig.board.cols << "rows" << rig.board.rows << "square_size" << rig.board.square_size << "}";
@@ -174,6 +182,18 @@ StereoRig read_rig(const fs::path& file) {
   if (fs["rms"].empty()) throw InputError(name + ": missing key 'rms'");
   rig.rms = static_cast<double>(fs["rms"]);
   if (!fs["per_view_errors"].empty()) fs["per_view_errors"] >> rig.per_view_errors;
+  if (!fs["camera_intrinsics_std"].empty()) {
+    RigUncertainty& u = rig.uncertainty;
+    for (const auto& [m, key, cols] : {std::tuple{&u.camera_intrinsics, "camera_intrinsics_std", 4},
+                                       {&u.camera_dist_coeffs, "dist_coeffs_std", 0},
+                                       {&u.projector_intrinsics, "projector_intrinsics_std", 4},
+                                       {&u.projector_dist_coeffs, "projector_dist_coeffs_std", 0},
+                                       {&u.om, "om_std", 3},
+                                       {&u.T, "T_std", 3}}) {
+      *m = read_mat(fs, key, name);
+      if (cols > 0) check_shape(*m, 1, cols, key, name);
+    }
+  }
   const cv::FileNode board = fs["board"];
   if (!board.empty()) {
     if (!board.isMap()) throw InputError(name + ": key 'board' must be a map {cols, rows, square_size}");

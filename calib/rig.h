@@ -16,6 +16,18 @@ struct BoardSpec {
   double square_size = 0.0;  // mm
 };
 
+// One standard deviation of each value a calibration estimated (empty matrices for a ground-truth rig), from the
+// joint adjustment's covariance (calib/stereo_fit.h). Coefficients held fixed have 0.
+struct RigUncertainty {
+  cv::Mat camera_intrinsics;     // 1x4: fx, fy, cx, cy (px)
+  cv::Mat camera_dist_coeffs;    // 1xN, the order of dist_coeffs
+  cv::Mat projector_intrinsics;  // 1x4
+  cv::Mat projector_dist_coeffs;
+  cv::Mat om;  // 1x3: the rotation vector of R (cv::Rodrigues), rad
+  cv::Mat T;   // 1x3, mm
+  bool empty() const { return camera_intrinsics.empty(); }
+};
+
 // Projector pose: X_proj = R X_cam + T (cv::stereoCalibrate convention); lengths in millimetres.
 // All matrices are CV_64F.
 struct StereoRig {
@@ -32,7 +44,8 @@ struct StereoRig {
   cv::Size rectified_camera_size;  // the images P1, P2 map into (initUndistortRectifyMap sizes)
   cv::Size rectified_projector_size;
   double rms = 0.0;                     // reprojection RMS of the calibration, px (0 for ground truth)
-  std::vector<double> per_view_errors;  // px per board pose (empty for ground truth)
+  std::vector<double> per_view_errors;  // px per board pose, both devices (empty for ground truth)
+  RigUncertainty uncertainty;
   BoardSpec board;
 };
 
@@ -47,9 +60,9 @@ void compute_stereo_geometry(StereoRig& rig);
 // Writes the rig atomically. Throws InputError when a matrix has the wrong size.
 void write_rig(const StereoRig& rig, const std::filesystem::path& file);
 
-// Reads a rig file and recomputes its derived keys (E, F, the rectification) from the intrinsics, R and T, so that a
-// file of an older version reads the same as a new one. Throws InputError naming the file and the key when a key is
-// missing, mis-sized or not finite, or the rig is degenerate.
+// Reads a rig file (with its standard deviations when it has them) and recomputes its derived keys (E, F, the
+// rectification) from the intrinsics, R and T, so that a file of an older version reads the same as a new one. Throws
+// InputError naming the file and the key when a key is missing, mis-sized or not finite, or the rig is degenerate.
 StereoRig read_rig(const std::filesystem::path& file);
 
 }  // namespace rfrecon::calib

@@ -1,9 +1,11 @@
 // Stereo calibration of the camera-projector pair.
 #include "calib/stereo_calibration.h"
 
+#include <cmath>
+
 #include <opencv2/calib3d.hpp>
 
-#include "calib/board_detection.h"
+#include "calib/pose_diversity.h"
 
 namespace rfrecon::calib {
 
@@ -17,7 +19,9 @@ StereoCalibration calibrate_stereo(const std::vector<StereoView>& views, const B
   }
   StereoCalibration result;
   result.camera = calibrate_camera(camera_views, board, camera_size, options);
-  result.projector = calibrate_camera(projector_views, board, projector_size, options);
+  CalibrationOptions projector_options = options;
+  projector_options.refine_board = false;  // the camera's board is the one used jointly
+  result.projector = calibrate_camera(projector_views, board, projector_size, projector_options);
 
   StereoRig& rig = result.rig;
   rig.camera_size = camera_size;
@@ -28,25 +32,33 @@ StereoCalibration calibrate_stereo(const std::vector<StereoView>& views, const B
   rig.projector_dist_coeffs = result.projector.dist_coeffs.clone();
   rig.board = board;
 
-  std::vector<std::vector<cv::Point3f>> object_points(views.size(), board_object_points(board));
+  const std::vector<std::vector<cv::Point3f>> object_points(views.size(), result.camera.board_points);
   std::vector<std::vector<cv::Point2f>> camera_points;
   std::vector<std::vector<cv::Point2f>> projector_points;
+  std::vector<StereoCorners> corners;
   for (const auto& view : views) {
     camera_points.push_back(view.camera_corners);
     projector_points.push_back(view.projector_corners);
+    corners.push_back({view.camera_corners, view.projector_corners});
   }
-  cv::Mat per_view;  // N x 2: camera, projector
-  const int flags = cv::CALIB_USE_INTRINSIC_GUESS | (options.full_distortion ? 0 : cv::CALIB_FIX_K3);
-  rig.rms = cv::stereoCalibrate(object_points, camera_points, projector_points, rig.camera_matrix, rig.dist_coeffs,
-                                rig.projector_matrix, rig.projector_dist_coeffs, camera_size, rig.R, rig.T, rig.E,
-                                rig.F, per_view, flags,
-                                cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 200, 1e-12));
-  for (int i = 0; i < per_view.rows; ++i) {
-    result.per_view_camera_errors.push_back(per_view.at<double>(i, 0));
-    result.per_view_projector_errors.push_back(per_view.at<double>(i, 1));
-    rig.per_view_errors.push_back(std::hypot(per_view.at<double>(i, 0), per_view.at<double>(i, 1)) / std::sqrt(2.0));
+  const int flags = cv::CALIB_USE_INTRINSIC_GUESS | distortion_flags(options.distortion);
+  rig.rms =
+      cv::stereoCalibrate(object_points, camera_points, projector_points, rig.camera_matrix, rig.dist_coeffs,
+                          rig.projector_matrix, rig.projector_dist_coeffs, camera_size, rig.R, rig.T, rig.E, rig.F,
+                          flags, cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 200, 1e-12));
+  result.fit = analyse_stereo_fit(rig, object_points, corners, options.distortion);
+  rig.uncertainty = result.fit.uncertainty;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    rig.per_view_errors.push_back(std::hypot(result.fit.camera_view_rms_px[i], result.fit.projector_view_rms_px[i]) /
+                                  std::sqrt(2.0));
   }
   compute_stereo_geometry(rig);
+
+  result.warnings = pose_set_warnings(static_cast<int>(views.size()), result.camera.tilt_spread_deg);
+  for (auto warning :
+       {coverage_warning("camera", result.camera.coverage), coverage_warning("projector", result.projector.coverage)}) {
+    if (!warning.empty()) result.warnings.push_back(std::move(warning));
+  }
   return result;
 }
 

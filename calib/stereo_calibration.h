@@ -1,4 +1,5 @@
-// Camera-projector stereo calibration: each device alone, then cv::stereoCalibrate and cv::stereoRectify.
+// Camera-projector stereo calibration: each device alone, then the joint adjustment (cv::stereoCalibrate), its
+// uncertainty, and the row rectification.
 #pragma once
 
 #include <string>
@@ -8,6 +9,7 @@
 
 #include "calib/camera_calibration.h"
 #include "calib/rig.h"
+#include "calib/stereo_fit.h"
 
 namespace rfrecon::calib {
 
@@ -19,15 +21,15 @@ struct StereoView {
 };
 
 struct StereoCalibration {
-  StereoRig rig;  // R, T: projector from camera; rectification filled by compute_stereo_geometry
-  CameraCalibration camera;
+  StereoRig rig;             // R, T: projector from camera; uncertainty and rectification filled
+  CameraCalibration camera;  // each device alone: the starting point of the joint adjustment
   CameraCalibration projector;
-  std::vector<double> per_view_camera_errors;     // px, after the joint refinement
-  std::vector<double> per_view_projector_errors;  // px, after the joint refinement
+  StereoFit fit;                      // residuals and per-view errors of the joint solution
+  std::vector<std::string> warnings;  // pose-set warnings (too few, too frontal, poor coverage of either image)
 };
 
-// Calibrates camera and projector separately (calibrate_camera checks view count and pose diversity), then refines
-// both with the stereo pose in cv::stereoCalibrate, then rectifies.
+// Calibrates camera and projector separately (calibrate_camera checks view count and pose diversity), then adjusts
+// every board pose, both devices and the stereo pose together in cv::stereoCalibrate, then rectifies.
 StereoCalibration calibrate_stereo(const std::vector<StereoView>& views, const BoardSpec& board, cv::Size camera_size,
                                    cv::Size projector_size, const CalibrationOptions& options = {});
 

@@ -10,7 +10,8 @@ function(rfrecon_add_test name)
   target_compile_options(${name} PRIVATE -Wall -Wextra)
   set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
   target_compile_definitions(${name} PRIVATE RFRECON_FIXTURES_DIR="${CMAKE_BINARY_DIR}/fixtures"
-                                             RFRECON_CLI_PATH="$<TARGET_FILE:rfrecon_cli>")
+                                             RFRECON_CLI_PATH="$<TARGET_FILE:rfrecon_cli>"
+                                             RFRECON_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   add_dependencies(${name} rfrecon_cli)
   # gtest_discover_tests keeps only the first element of a list property: tests name one fixture, which REQUIRES
   # the others (ctest sets up required fixtures transitively).

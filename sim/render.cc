@@ -172,9 +172,17 @@ class RowRenderer {
     const int per_pixel = n_ * n_ + 1;  // sub-pixel samples, then the pixel centre
     std::vector<cv::Point2d> pixels;
     pixels.reserve(static_cast<std::size_t>(camera.width) * per_pixel);
+    std::uniform_real_distribution<double> in_cell(0.0, 1.0);
     for (int x = 0; x < camera.width; ++x) {
+      // A grid of cells regularly placed aliases straight edges to 1/N px; a point drawn in each cell does not.
+      std::mt19937_64 placement(options_.seed * 0xD1B54A32D192ED03ULL + static_cast<unsigned long long>(y) * 65536ULL +
+                                static_cast<unsigned long long>(x));
       for (int j = 0; j < n_; ++j) {
-        for (int i = 0; i < n_; ++i) pixels.emplace_back(x - 0.5 + (i + 0.5) / n_, y - 0.5 + (j + 0.5) / n_);
+        for (int i = 0; i < n_; ++i) {
+          const double u = options_.jitter ? in_cell(placement) : 0.5;
+          const double v = options_.jitter ? in_cell(placement) : 0.5;
+          pixels.emplace_back(x - 0.5 + (i + u) / n_, y - 0.5 + (j + v) / n_);
+        }
       }
       pixels.emplace_back(x, y);
     }

@@ -17,6 +17,7 @@ namespace rfrecon::sim {
 // What `render_transport` computes and how finely.
 struct RenderOptions {
   int supersample = 4;                // camera pixel sampled on an N x N grid of sub-pixel rays
+  bool jitter = false;                // each ray at a random place in its grid cell (unbiased edges), else centred
   int interreflection_samples = 0;    // cosine-weighted rays per camera sample for one-bounce interreflection; 0 = off
   double projector_defocus_px = 0.0;  // sigma of a Gaussian projector PSF, projector pixels; 0 = in focus
   double camera_defocus_px = 0.0;     // sigma of a Gaussian camera PSF, camera pixels; 0 = in focus

@@ -314,11 +314,13 @@ CaptureSettings parse_capture(const Reader& r, const json& j, const std::string&
 }
 
 RenderOptions parse_render(const Reader& r, const json& j, const std::string& path) {
-  r.check_keys(j, path,
-               {"supersample", "interreflection_samples", "projector_defocus_px", "camera_defocus_px", "seed"});
+  r.check_keys(
+      j, path,
+      {"supersample", "jitter", "interreflection_samples", "projector_defocus_px", "camera_defocus_px", "seed"});
   RenderOptions o;
   o.supersample = r.get<int>(j, path, "supersample", o.supersample);
   if (o.supersample < 1 || o.supersample > 32) r.fail(Reader::join(path, "supersample"), "must be in [1, 32]");
+  o.jitter = r.get<bool>(j, path, "jitter", o.jitter);
   o.interreflection_samples = r.get<int>(j, path, "interreflection_samples", o.interreflection_samples);
   if (o.interreflection_samples < 0) r.fail(Reader::join(path, "interreflection_samples"), "must be >= 0");
   o.projector_defocus_px = r.non_negative(j, path, "projector_defocus_px", o.projector_defocus_px);
@@ -404,6 +406,7 @@ json scene_to_json(const Scene& scene) {
               {"format", c.format}}},
             {"render",
              {{"supersample", o.supersample},
+              {"jitter", o.jitter},
               {"interreflection_samples", o.interreflection_samples},
               {"projector_defocus_px", o.projector_defocus_px},
               {"camera_defocus_px", o.camera_defocus_px},

@@ -16,7 +16,8 @@ namespace {
 struct BoardOptions {
   std::string board;  // COLSxROWS inner corners
   double square_mm = 0.0;
-  bool full_distortion = false;
+  std::string distortion = "standard";
+  bool refine_board = false;
 };
 
 calib::BoardSpec board_spec(const BoardOptions& options) {
@@ -34,13 +35,28 @@ void add_board_options(CLI::App* command, BoardOptions& options) {
   command->add_option("--square", options.square_mm, "Side of one square, in mm")
       ->required()
       ->check(CLI::PositiveNumber);
-  command->add_flag("--full-distortion", options.full_distortion, "Also estimate k3 (wide-angle lenses)");
+  command
+      ->add_option("--distortion", options.distortion,
+                   "Lens model: radial (k1 k2), standard (k1 k2 p1 p2, default), full (+ k3, wide-angle lenses) "
+                   "or rational (k1..k6 p1 p2)")
+      ->capture_default_str();
+  command->add_flag("--refine-board", options.refine_board,
+                    "Also estimate the board's corner positions (a board not quite flat; needs 15 or more poses)");
 }
 
-void print_intrinsics(const char* device, const cv::Mat& matrix, const cv::Mat& dist) {
-  std::printf("%-10s fx %.2f  fy %.2f  cx %.2f  cy %.2f  k1 %.4f  k2 %.4f px\n", device, matrix.at<double>(0, 0),
-              matrix.at<double>(1, 1), matrix.at<double>(0, 2), matrix.at<double>(1, 2), dist.at<double>(0),
-              dist.at<double>(1));
+calib::CalibrationOptions calibration_options(const BoardOptions& options) {
+  calib::CalibrationOptions out;
+  out.distortion = calib::parse_distortion_model(options.distortion, "--distortion");
+  out.refine_board = options.refine_board;
+  return out;
+}
+
+// The intrinsics with one standard deviation each, as Bouguet's toolbox prints them.
+void print_intrinsics(const char* device, const cv::Mat& matrix, const cv::Mat& dist, const cv::Mat& intrinsics_std) {
+  std::printf("%-10s fx %.2f +- %.2f  fy %.2f +- %.2f  cx %.2f +- %.2f  cy %.2f +- %.2f  k1 %.4f  k2 %.4f\n", device,
+              matrix.at<double>(0, 0), intrinsics_std.at<double>(0), matrix.at<double>(1, 1),
+              intrinsics_std.at<double>(1), matrix.at<double>(0, 2), intrinsics_std.at<double>(2),
+              matrix.at<double>(1, 2), intrinsics_std.at<double>(3), dist.at<double>(0), dist.at<double>(1));
 }
 
 struct CameraOptions {
@@ -54,13 +70,13 @@ void run_calibrate_camera(const CameraOptions& options) {
   calib::CameraImagesRequest request;
   request.images = options.images;
   request.board = board_spec(options.board);
-  request.options.full_distortion = options.board.full_distortion;
+  request.options = calibration_options(options.board);
   request.output = options.output;
   request.report_dir = options.report.empty() ? calib::default_report_dir(options.output) : options.report;
   const auto run = calib::calibrate_camera_from_images(request);
   const auto& result = run.calibration;
   std::printf("%zu of %zu views used; reprojection RMS %.4f px\n", result.view_names.size(), run.images, result.rms);
-  print_intrinsics("camera", result.camera_matrix, result.dist_coeffs);
+  print_intrinsics("camera", result.camera_matrix, result.dist_coeffs, result.intrinsics_std);
   for (std::size_t i = 0; i < result.view_names.size(); ++i) {
     std::printf("  %-24s %.4f px\n", result.view_names[i].c_str(), result.per_view_errors[i]);
   }
@@ -81,7 +97,7 @@ void run_calibrate(const StereoOptions& options) {
   request.pose_dirs = options.poses;
   request.source = capture_source(options.capture);
   request.board = board_spec(options.board);
-  request.options.full_distortion = options.board.full_distortion;
+  request.options = calibration_options(options.board);
   request.output = options.output;
   request.report_dir = options.report.empty() ? calib::default_report_dir(options.output) : options.report;
   auto devices = cl::open_devices(options.devices);
@@ -91,13 +107,15 @@ void run_calibrate(const StereoOptions& options) {
   const auto& result = run.calibration;
   std::printf("%zu of %zu poses used; stereo reprojection RMS %.4f px\n", run.view_names.size(), run.poses,
               result.rig.rms);
-  print_intrinsics("camera", result.rig.camera_matrix, result.rig.dist_coeffs);
-  print_intrinsics("projector", result.rig.projector_matrix, result.rig.projector_dist_coeffs);
-  std::printf("baseline   %.3f mm  (T = [%.3f %.3f %.3f])\n", cv::norm(result.rig.T), result.rig.T.at<double>(0),
-              result.rig.T.at<double>(1), result.rig.T.at<double>(2));
+  const auto& rig = result.rig;
+  print_intrinsics("camera", rig.camera_matrix, rig.dist_coeffs, rig.uncertainty.camera_intrinsics);
+  print_intrinsics("projector", rig.projector_matrix, rig.projector_dist_coeffs, rig.uncertainty.projector_intrinsics);
+  std::printf("baseline   %.3f mm  (T = [%.3f %.3f %.3f] +- [%.3f %.3f %.3f])\n", cv::norm(rig.T), rig.T.at<double>(0),
+              rig.T.at<double>(1), rig.T.at<double>(2), rig.uncertainty.T.at<double>(0),
+              rig.uncertainty.T.at<double>(1), rig.uncertainty.T.at<double>(2));
   for (std::size_t i = 0; i < run.view_names.size(); ++i) {
     std::printf("  %-24s camera %.4f px  projector %.4f px\n", run.view_names[i].c_str(),
-                result.per_view_camera_errors[i], result.per_view_projector_errors[i]);
+                result.fit.camera_view_rms_px[i], result.fit.projector_view_rms_px[i]);
   }
   std::printf("wrote %s and %s/\n", request.output.c_str(), request.report_dir.c_str());
 }

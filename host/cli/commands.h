@@ -29,6 +29,7 @@ void add_transport_command(CLI::App& app);
 void add_dual_command(CLI::App& app);
 void add_calibrate_commands(CLI::App& app);
 void add_evaluate_command(CLI::App& app);
+void add_evaluate_rig_command(CLI::App& app);
 void add_reconstruct_command(CLI::App& app);
 void add_demo_command(CLI::App& app);
 

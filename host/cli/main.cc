@@ -47,6 +47,7 @@ int main(int argc, char** argv) {
   add_calibrate_commands(app);
   add_reconstruct_command(app);
   add_evaluate_command(app);
+  add_evaluate_rig_command(app);
   add_demo_command(app);
 
   try {

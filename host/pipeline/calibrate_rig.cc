@@ -8,6 +8,7 @@
 
 #include "calib/pose_observation.h"
 #include "calib/report.h"
+#include "calib/report_files.h"
 #include "host/core/atomic_file.h"
 #include "host/core/errors.h"
 #include "host/core/image_file.h"
@@ -77,9 +78,8 @@ RigCalibrationRun calibrate_rig(const RigCalibrationRequest& request, std::vecto
     }
     return calib::calibrate_stereo(views, request.board, camera_size, projector_size, request.options);
   });
-  write_image(report.path() / "errors.png", calib::draw_error_chart(run.view_names, {"camera", "projector"},
-                                                                    {run.calibration.per_view_camera_errors,
-                                                                     run.calibration.per_view_projector_errors}));
+  for (const auto& warning : run.calibration.warnings) spdlog::warn("calibrate: {}", warning);
+  calib::write_stereo_report(report.path(), run.calibration, views);
   write_file_atomically(report.path() / "schedule.json", nlohmann::json(run.schedule).dump(2) + "\n");
   calib::write_rig(run.calibration.rig, request.output);
   report.commit();

@@ -29,8 +29,9 @@ struct CaptureViews {
   std::vector<sched::RunReport> schedule;  // the transport and dual stages per device
 };
 
-// Builds T for the capture in `capture_dir` on `devices` (K = 8, default thresholds), forms T^T 1 and reads the white
-// frame. Input errors (missing frames, bad manifest) throw InputError.
+// Builds T for the capture in `capture_dir` on `devices` (K = 8, default thresholds but a black threshold at the noise
+// level, so the board's dark squares are lit), forms T^T 1 and reads the white frame. Input errors (missing frames, bad
+// manifest) throw InputError.
 CaptureViews view_capture(const std::filesystem::path& capture_dir, const CaptureSource& source,
                           std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs);
 

@@ -2,9 +2,11 @@
 // no calibration file left behind.
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "host/cli/exit_codes.h"
@@ -71,6 +73,42 @@ TEST_F(CalibrateCliTest, SquareBoardIsRejected) {
                               (out_ / "camera.yaml").string());
   EXPECT_EQ(result.exit_code, kExitInput) << result.output;
   EXPECT_THAT(result.output, HasSubstr("inner corner counts differ"));
+}
+
+TEST_F(CalibrateCliTest, UnknownDistortionModelIsExit3) {
+  const auto result =
+      run_cli("calibrate-camera " + pose(0) + "/000_white.png --board 9x6 --square 30 --distortion k4 -o " +
+              (out_ / "camera.yaml").string());
+  EXPECT_EQ(result.exit_code, kExitInput) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("--distortion k4"));
+  EXPECT_FALSE(fs::exists(out_ / "camera.yaml"));
+}
+
+// Six white frames with the radial model: the tangential coefficients are held at 0 (deviation 0), the others get a
+// positive deviation, and the report warns that six poses are too few.
+TEST_F(CalibrateCliTest, RadialModelWithFewPosesWarnsAndHoldsTangentialAtZero) {
+  std::string images;
+  for (int i = 0; i < 6; ++i) images += pose(i) + "/000_white.png ";
+  const auto result = run_cli("calibrate-camera " + images + "--board 9x6 --square 30 --distortion radial -o " +
+                              (out_ / "camera.yaml").string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("only 6 poses"));
+  cv::FileStorage fs((out_ / "camera.yaml").string(), cv::FileStorage::READ);
+  cv::Mat dist;
+  cv::Mat dist_std;
+  fs["dist_coeffs"] >> dist;
+  fs["dist_coeffs_std"] >> dist_std;
+  ASSERT_EQ(dist_std.total(), 5u);
+  EXPECT_EQ(dist.at<double>(2), 0.0);
+  EXPECT_EQ(dist_std.at<double>(2), 0.0);
+  EXPECT_EQ(dist_std.at<double>(3), 0.0);
+  EXPECT_GT(dist_std.at<double>(0), 0.0);
+  std::ifstream report(out_ / "camera_report" / "report.json");
+  std::stringstream text;
+  text << report.rdbuf();
+  EXPECT_THAT(text.str(), HasSubstr("only 6 poses"));
+  EXPECT_TRUE(fs::exists(out_ / "camera_report" / "residuals_camera.png"));
+  EXPECT_TRUE(fs::exists(out_ / "camera_report" / "coverage_camera.png"));
 }
 
 }  // namespace

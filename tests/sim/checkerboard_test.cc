@@ -29,7 +29,7 @@ TEST(CheckerboardTest, EveryPoseIsSeenAndLit) {
   // Calibration needs all 54 corners in both images, away from the border (10 px margin for the corner detector's
   // window), and the board facing both devices.
   const Scene scene = builtin_scene("checkerboard-poses");
-  ASSERT_EQ(scene.views.size(), 10u);
+  ASSERT_EQ(scene.views.size(), 16u);
   for (std::size_t v = 0; v < scene.views.size(); ++v) {
     const Scene view = scene_for_view(scene, v);
     const Eigen::Vector3d normal = view.objects[0].world_from_object.linear().col(2);

@@ -1,0 +1,26 @@
+// The files of a calibration report beside the corner images: the per-view error chart, residual plots and coverage
+// maps per device (PNG) and report.json (per-view errors, standard deviations, pose-set checks and warnings).
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "calib/camera_calibration.h"
+#include "calib/stereo_calibration.h"
+
+namespace rfrecon::calib {
+
+nlohmann::json camera_report_json(const CameraCalibration& calibration);
+nlohmann::json stereo_report_json(const StereoCalibration& calibration);
+
+// errors.png, residuals_camera.png, coverage_camera.png and report.json, into `dir`.
+void write_camera_report(const std::filesystem::path& dir, const CameraCalibration& calibration,
+                         const std::vector<BoardView>& views);
+
+// errors.png, residuals_{camera,projector}.png, coverage_{camera,projector}.png and report.json, into `dir`.
+void write_stereo_report(const std::filesystem::path& dir, const StereoCalibration& calibration,
+                         const std::vector<StereoView>& views);
+
+}  // namespace rfrecon::calib

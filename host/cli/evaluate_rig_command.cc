@@ -1,0 +1,57 @@
+// `rfrecon evaluate-rig`: an estimated rig (from `calibrate`) against the true rig of `rfrecon simulate`.
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "calib/rig_comparison.h"
+#include "host/cli/commands.h"
+#include "host/core/atomic_file.h"
+
+namespace rfrecon::cli {
+
+namespace {
+struct EvaluateRigOptions {
+  std::filesystem::path estimated;
+  std::filesystem::path truth;
+  std::filesystem::path output;
+};
+
+void run_evaluate_rig(const EvaluateRigOptions& options) {
+  const auto c = calib::compare_rigs(calib::read_rig(options.estimated), calib::read_rig(options.truth));
+  std::printf("camera     focal %.4f%%  principal point %.3f px\n", 100.0 * c.camera_focal_error,
+              c.camera_principal_error_px);
+  std::printf("projector  focal %.4f%%  principal point %.3f px\n", 100.0 * c.projector_focal_error,
+              c.projector_principal_error_px);
+  std::printf("baseline   %+.5f%%  rotation %.4f degree\n", 100.0 * c.baseline_error, c.rotation_error_deg);
+  std::printf("depth      scale error %+.2e  RMS %.2e over %d points at 500 to 700 mm\n", c.depth_scale_error,
+              c.depth_rms_error, c.points);
+  if (options.output.empty()) return;
+  const nlohmann::json report = {{"estimated", options.estimated.string()},
+                                 {"truth", options.truth.string()},
+                                 {"camera_focal_error", c.camera_focal_error},
+                                 {"camera_principal_error_px", c.camera_principal_error_px},
+                                 {"projector_focal_error", c.projector_focal_error},
+                                 {"projector_principal_error_px", c.projector_principal_error_px},
+                                 {"baseline_error", c.baseline_error},
+                                 {"rotation_error_deg", c.rotation_error_deg},
+                                 {"depth_scale_error", c.depth_scale_error},
+                                 {"depth_rms_error", c.depth_rms_error},
+                                 {"points", c.points}};
+  write_file_atomically(options.output, report.dump(2) + "\n");
+}
+}  // namespace
+
+void add_evaluate_rig_command(CLI::App& app) {
+  auto options = std::make_shared<EvaluateRigOptions>();
+  auto* command = app.add_subcommand("evaluate-rig", "Compare a calibrated rig.yaml with the true rig of `simulate`");
+  command->add_option("estimated", options->estimated, "Rig file written by `rfrecon calibrate`")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--truth", options->truth, "True rig file (SIMULATE_OUT/truth/rig.yaml)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("-o,--output", options->output, "Also write the comparison as JSON");
+  command->callback([options] { run_evaluate_rig(*options); });
+}
+
+}  // namespace rfrecon::cli
