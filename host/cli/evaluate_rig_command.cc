@@ -1,11 +1,13 @@
 // `rfrecon evaluate-rig`: an estimated rig (from `calibrate`) against the true rig of `rfrecon simulate`.
 #include <cstdio>
+#include <system_error>
 
 #include <nlohmann/json.hpp>
 
 #include "calib/rig_comparison.h"
 #include "host/cli/commands.h"
 #include "host/core/atomic_file.h"
+#include "host/core/errors.h"
 
 namespace rfrecon::cli {
 
@@ -17,6 +19,13 @@ struct EvaluateRigOptions {
 };
 
 void run_evaluate_rig(const EvaluateRigOptions& options) {
+  std::error_code error;
+  for (const auto& input : {options.estimated, options.truth}) {
+    if (!options.output.empty() && std::filesystem::equivalent(options.output, input, error)) {
+      throw InputError("-o " + options.output.string() + " is the input rig " + input.string() +
+                       "; write the comparison elsewhere");
+    }
+  }
   const auto c = calib::compare_rigs(calib::read_rig(options.estimated), calib::read_rig(options.truth));
   std::printf("camera     focal %.4f%%  principal point %.3f px\n", 100.0 * c.camera_focal_error,
               c.camera_principal_error_px);

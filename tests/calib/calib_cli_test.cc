@@ -111,5 +111,16 @@ TEST_F(CalibrateCliTest, RadialModelWithFewPosesWarnsAndHoldsTangentialAtZero) {
   EXPECT_TRUE(fs::exists(out_ / "camera_report" / "coverage_camera.png"));
 }
 
+TEST_F(CalibrateCliTest, EvaluateRigNeverWritesOverAnInput) {
+  fs::create_directories(out_);
+  const fs::path rig = out_ / "rig.yaml";
+  fs::copy_file(kPoses.parent_path() / "truth" / "rig.yaml", rig);
+  const auto before = fs::file_size(rig);
+  const auto result = run_cli("evaluate-rig " + rig.string() + " --truth " + rig.string() + " -o " + rig.string());
+  EXPECT_EQ(result.exit_code, kExitInput) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("is the input rig"));
+  EXPECT_EQ(fs::file_size(rig), before);
+}
+
 }  // namespace
 }  // namespace rfrecon::cli
