@@ -12,6 +12,7 @@
 #include "host/core/atomic_file.h"
 #include "host/core/errors.h"
 #include "host/core/image_file.h"
+#include "host/core/output_path.h"
 #include "host/core/progress.h"
 
 namespace rfrecon::calib {
@@ -35,6 +36,11 @@ fs::path default_report_dir(const fs::path& output) {
 }
 
 CameraImagesRun calibrate_camera_from_images(const CameraImagesRequest& request) {
+  const OutputPath output{request.output, "--output", request.force};
+  const OutputPath report_output{request.report_dir, "--report", request.force};
+  check_output_file(output, request.images);
+  check_output_directory(report_output, request.images);
+  check_distinct_outputs({output, report_output});
   CameraImagesRun run;
   run.images = request.images.size();
   std::vector<BoardView> views;
@@ -42,9 +48,7 @@ CameraImagesRun calibrate_camera_from_images(const CameraImagesRequest& request)
   StagingDirectory report(request.report_dir, true);
   Progress progress("calibrate-camera", request.images.size(), "images");
   for (const auto& file : request.images) {
-    const cv::Mat image = cv::imread(file.string(), cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
-    if (image.empty())
-      throw InputError("cannot read image " + file.string() + " (missing, unreadable or not an image)");
+    const cv::Mat image = decode_image(file, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
     if (image_size.empty()) image_size = image.size();
     if (image.size() != image_size) {
       throw InputError(file.string() + ": size " + size_text(image.size()) + " differs from the first image's " +
@@ -64,8 +68,8 @@ CameraImagesRun calibrate_camera_from_images(const CameraImagesRequest& request)
       keeping_report(report, [&] { return calibrate_camera(views, request.board, image_size, request.options); });
   for (const auto& warning : run.calibration.warnings) spdlog::warn("calibrate-camera: {}", warning);
   write_camera_report(report.path(), run.calibration, views);
+  report.commit();  // the secondary output first: a report that cannot be moved into place fails before the file
   write_camera_calibration(run.calibration, request.output);
-  report.commit();
   return run;
 }
 

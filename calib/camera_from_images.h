@@ -15,6 +15,7 @@ struct CameraImagesRequest {
   CalibrationOptions options;
   std::filesystem::path output;      // camera.yaml (OpenCV FileStorage), written atomically
   std::filesystem::path report_dir;  // corner images and the error chart, written whole
+  bool force = false;                // replace an existing calibration file and report directory
 };
 
 struct CameraImagesRun {
@@ -23,8 +24,10 @@ struct CameraImagesRun {
 };
 
 // Detects the board in each image (skipping, with a warning, images without it), calibrates, writes the report and
-// then the calibration. Throws InputError naming the file for an unreadable image or one of another size, and
-// ProcessingError (after writing the report, which it names) when too few views remain or the poses are degenerate.
+// then the calibration. Throws UsageError before any work for outputs that host/core/output_path.h refuses (one of
+// the images, an existing one without force), InputError naming the file for an unreadable image or one of another
+// size, and ProcessingError (after writing the report, which it names) when too few views remain or the poses are
+// degenerate.
 CameraImagesRun calibrate_camera_from_images(const CameraImagesRequest& request);
 
 // The default report directory of an output file: OUTPUT_STEM_report beside it.

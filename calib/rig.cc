@@ -8,6 +8,7 @@
 #include "calib/rectification.h"
 #include "host/core/atomic_file.h"
 #include "host/core/errors.h"
+#include "host/core/limits.h"
 
 namespace rfrecon::calib {
 
@@ -81,9 +82,18 @@ cv::Mat as_double(const cv::Mat& m) {
   return out;
 }
 
+constexpr long long kMaxMatrixElements = 16;
+
 cv::Mat read_mat(const cv::FileStorage& fs, const char* key, const std::string& file) {
   const cv::FileNode node = fs[key];
   if (node.empty()) throw InputError(file + ": missing key '" + key + "'");
+  // Rig matrices are at most 4x4 (or 1x14 coefficients): a larger declared shape is refused before it is allocated.
+  if (!node.isMap() || !node["rows"].isInt() || !node["cols"].isInt() || static_cast<int>(node["rows"]) < 1 ||
+      static_cast<int>(node["cols"]) < 1 ||
+      static_cast<long long>(static_cast<int>(node["rows"])) * static_cast<int>(node["cols"]) > kMaxMatrixElements) {
+    throw InputError(file + ": key '" + key + "' is not an OpenCV matrix (!!opencv-matrix) of at most " +
+                     std::to_string(kMaxMatrixElements) + " elements");
+  }
   cv::Mat m;
   try {
     node >> m;
@@ -97,8 +107,12 @@ cv::Mat read_mat(const cv::FileStorage& fs, const char* key, const std::string& 
 cv::Size read_size(const cv::FileStorage& fs, const char* key, const std::string& file) {
   const cv::FileNode node = fs[key];
   if (node.empty()) throw InputError(file + ": missing key '" + key + "'");
-  if (!node.isSeq() || node.size() != 2) throw InputError(file + ": key '" + key + "' must be [width, height]");
-  return {static_cast<int>(node[0]), static_cast<int>(node[1])};
+  if (!node.isSeq() || node.size() != 2 || !node[0].isInt() || !node[1].isInt()) {
+    throw InputError(file + ": key '" + key + "' must be [width, height] (integers)");
+  }
+  const cv::Size size(static_cast<int>(node[0]), static_cast<int>(node[1]));
+  check_image_size(size, file + ": key '" + key + "'");
+  return size;
 }
 }  // namespace
 
@@ -151,7 +165,8 @@ void write_rig(const StereoRig& rig, const fs::path& file) {
   write_file_atomically(file, fs.releaseAndGetString());
 }
 
-StereoRig read_rig(const fs::path& file) {
+namespace {
+StereoRig read_rig_file(const fs::path& file) {
   const std::string name = file.string();
   cv::FileStorage fs;
   try {
@@ -208,6 +223,19 @@ StereoRig read_rig(const fs::path& file) {
     throw InputError(name + ": " + error.what());
   }
   return rig;
+}
+}  // namespace
+
+StereoRig read_rig(const fs::path& file) {
+  try {
+    return read_rig_file(file);
+  } catch (const cv::Exception& error) {
+    throw InputError(file.string() + ": not a valid rig file (" + error.err + ")");
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& error) {  // OpenCV's YAML parser throws std::length_error on some inputs
+    throw InputError(file.string() + ": not a valid rig file (" + error.what() + ")");
+  }
 }
 
 }  // namespace rfrecon::calib

@@ -20,9 +20,9 @@ mkdir -p "$out"
 for seed in $(seq 1 "$seeds"); do
   dir="$out/seed_$seed"
   if [[ ! -f "$dir/evaluate-rig.json" ]]; then
-    "$rfrecon" -q simulate --scene checkerboard-poses --seed "$seed" --out "$dir/poses" --force "$@"
-    "$rfrecon" -q calibrate "$dir"/poses/capture/pose_* --board 9x6 --square 30 -o "$dir/rig.yaml" > "$dir/calibrate.txt"
-    "$rfrecon" evaluate-rig "$dir/rig.yaml" --truth "$dir/poses/truth/rig.yaml" -o "$dir/evaluate-rig.json"
+    "$rfrecon" -q simulate --scene checkerboard-poses --seed "$seed" -o "$dir/poses" --force "$@"
+    "$rfrecon" -q calibrate "$dir"/poses/capture/pose_* --board 9x6 --square 30 -o "$dir/rig.yaml" --force > "$dir/calibrate.txt"
+    "$rfrecon" evaluate-rig "$dir/rig.yaml" --truth "$dir/poses/truth/rig.yaml" -o "$dir/evaluate-rig.json" --force
     rm -rf "$dir/poses/capture"  # the frames are large; the truth and the rig stay
   fi
 done

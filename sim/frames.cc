@@ -83,7 +83,8 @@ void write_capture(const TransportMatrix& T, const CaptureSettings& settings, cv
         const cv::Mat pattern = capture::render_pattern(frame.pattern, projector_size, settings.dot_spacing);
         const cv::Mat raw = camera_reading(transport_image(T, pattern, camera_size), settings, seed, i);
         const fs::path path = capture_dir / frame.file;
-        if (!cv::imwrite(path.string(), raw)) throw std::runtime_error("cannot write " + path.string());
+        if (!cv::imwrite(path.string(), raw))
+          throw OutputError("cannot write " + path.string() + " (permission, read-only file system or disk full)");
         if (progress != nullptr) progress->advance();
       } catch (...) {
         const std::lock_guard<std::mutex> lock(failure_mutex);

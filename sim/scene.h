@@ -67,8 +67,11 @@ Scene scene_for_view(const Scene& scene, std::size_t view);
 // its transport matrix is, by Helmholtz reciprocity, T^T up to the pixel solid-angle ratio (docs/sim.md).
 Scene swap_devices(const Scene& scene);
 
+// The largest simulated camera or projector side (px): rendering T costs pixels x supersample^2 rays.
+inline constexpr int kMaxSimulatedSide = 4096;
+
 // Changes device resolutions keeping the field of view: focal lengths scale with the width ratio, the principal
-// point with the width and height ratios.
+// point with the width and height ratios. Throws InputError for a side outside [1, kMaxSimulatedSide].
 void resize_device(Device& device, cv::Size size);
 
 }  // namespace rfrecon::sim

@@ -42,11 +42,10 @@ class Reader {
   template <typename T>
   T get(const json& object, const std::string& path, const std::string& key) const {
     if (!object.contains(key)) fail(join(path, key), "missing");
-    try {
-      return object.at(key).get<T>();
-    } catch (const json::exception&) {
-      fail(join(path, key), std::string("wrong type (got ") + object.at(key).type_name() + ")");
-    }
+    std::string problem;
+    auto value = json_as<T>(object.at(key), problem);
+    if (!value) fail(join(path, key), "must be " + problem);
+    return std::move(*value);
   }
 
   std::vector<double> numbers(const json& object, const std::string& path, const std::string& key,
@@ -129,8 +128,9 @@ Device parse_device(const Reader& r, const json& j, const std::string& path, boo
   r.check_keys(j, path, keys);
   Device d;
   const auto size = r.get<std::vector<int>>(j, path, "size");
-  if (size.size() != 2 || size[0] <= 0 || size[1] <= 0) {
-    r.fail(Reader::join(path, "size"), "must be [width, height] with both > 0");
+  if (size.size() != 2 || size[0] <= 0 || size[1] <= 0 || size[0] > kMaxSimulatedSide || size[1] > kMaxSimulatedSide) {
+    r.fail(Reader::join(path, "size"),
+           "must be [width, height] with both in [1, " + std::to_string(kMaxSimulatedSide) + "]");
   }
   d.size = {size[0], size[1]};
   const auto focal = r.numbers(j, path, "focal", 2);
@@ -449,6 +449,10 @@ Scene swap_devices(const Scene& scene) {
 }
 
 void resize_device(Device& device, cv::Size size) {
+  if (size.width < 1 || size.height < 1 || size.width > kMaxSimulatedSide || size.height > kMaxSimulatedSide) {
+    throw InputError("a simulated device's size must be in [1, " + std::to_string(kMaxSimulatedSide) +
+                     "] a side, got " + std::to_string(size.width) + "x" + std::to_string(size.height));
+  }
   const double sx = static_cast<double>(size.width) / device.size.width;
   const double sy = static_cast<double>(size.height) / device.size.height;
   device.fx *= sx;

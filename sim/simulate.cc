@@ -8,6 +8,7 @@
 
 #include "host/core/atomic_file.h"
 #include "host/core/errors.h"
+#include "host/core/output_path.h"
 #include "host/core/progress.h"
 #include "sim/frames.h"
 #include "sim/render.h"
@@ -74,13 +75,9 @@ void render_view(const Scene& scene, int threads, const std::string& label, cons
 void simulate(const Scene& scene, const fs::path& out_dir, const SimulateOptions& options) {
   const int threads =
       options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  std::unique_ptr<StagingDirectory> staging;
-  try {
-    staging = std::make_unique<StagingDirectory>(out_dir, options.force);
-  } catch (const std::runtime_error& error) {
-    throw InputError(std::string("--out: ") + error.what());
-  }
-  const fs::path root = staging->path();
+  check_output_directory({out_dir, "--output", options.force}, options.inputs);
+  StagingDirectory staging(out_dir, options.force);
+  const fs::path root = staging.path();
   if (scene.views.empty()) {
     render_view(scene, threads, scene.name, root / "capture", root / "truth");
     calib::write_rig(true_rig(scene), root / "truth" / "rig.yaml");
@@ -99,7 +96,7 @@ void simulate(const Scene& scene, const fs::path& out_dir, const SimulateOptions
     write_file_atomically(root / "truth" / "board_poses.json", poses.dump(2) + "\n");
   }
   write_file_atomically(root / "scene.json", scene_to_json(scene).dump(2) + "\n");
-  staging->commit();
+  staging.commit();
 }
 
 }  // namespace rfrecon::sim

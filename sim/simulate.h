@@ -4,14 +4,16 @@
 #pragma once
 
 #include <filesystem>
+#include <vector>
 
 #include "sim/scene.h"
 
 namespace rfrecon::sim {
 
 struct SimulateOptions {
-  int threads = 0;     // 0 = hardware concurrency
-  bool force = false;  // replace a non-empty existing output directory
+  int threads = 0;                            // 0 = hardware concurrency
+  bool force = false;                         // replace a non-empty existing output directory
+  std::vector<std::filesystem::path> inputs;  // files the scene came from: the output may not hold them
 };
 
 // Layout (docs/sim.md): single-view scenes: OUT/capture/, OUT/truth/{depth.tiff, normals.tiff, visibility.png,

@@ -11,6 +11,9 @@
 
 #include "host/core/atomic_file.h"
 #include "host/core/errors.h"
+#include "host/core/image_file.h"
+#include "host/core/json_file.h"
+#include "host/core/limits.h"
 
 namespace rfrecon::capture {
 
@@ -51,11 +54,16 @@ json frame_to_json(const Frame& frame) {
 template <typename T>
 T field(const json& object, const std::string& key, const std::string& where, const fs::path& file) {
   if (!object.contains(key)) throw InputError(file.string() + ": missing field '" + where + key + "'");
-  try {
-    return object.at(key).get<T>();
-  } catch (const json::exception& error) {
-    throw InputError(file.string() + ": field '" + where + key + "' has the wrong type (" + error.what() + ")");
-  }
+  std::string problem;
+  auto value = json_as<T>(object.at(key), problem);
+  if (!value) throw InputError(file.string() + ": field '" + where + key + "' has the wrong type: must be " + problem);
+  return std::move(*value);
+}
+
+// An optional field: `fallback` when absent, else read as field() does.
+template <typename T>
+T optional_field(const json& object, const std::string& key, T fallback, const fs::path& file) {
+  return object.contains(key) ? field<T>(object, key, "", file) : fallback;
 }
 
 cv::Size size_field(const json& object, const std::string& key, const fs::path& file) {
@@ -63,7 +71,34 @@ cv::Size size_field(const json& object, const std::string& key, const fs::path& 
   if (values.size() != 2 || values[0] < 0 || values[1] < 0) {
     throw InputError(file.string() + ": field '" + key + "' must be [width, height] with non-negative values");
   }
-  return {values[0], values[1]};
+  const cv::Size size(values[0], values[1]);
+  check_image_size(size, file.string() + ": field '" + key + "'");
+  return size;
+}
+
+// A frame's file: a relative path without "..", NUL or empty parts, that stays inside the capture directory after
+// links are resolved (unless `paths` allows anywhere).
+void check_frame_path(const std::string& name, const fs::path& dir, FramePaths paths, const std::string& where,
+                      const fs::path& file) {
+  const auto fail = [&](const std::string& what) {
+    throw InputError(file.string() + ": " + where + "file '" + name.substr(0, name.find('\0')) + "' " + what);
+  };
+  if (name.empty()) fail("is empty");
+  if (name.find('\0') != std::string::npos) fail("contains a NUL character");
+  if (paths == FramePaths::kAnywhere) return;
+  const fs::path path(name);
+  if (path.is_absolute())
+    fail("is absolute; frames must lie in the capture directory (or pass --allow-outside-frames)");
+  for (const auto& part : path) {
+    if (part == "..") fail("leaves the capture directory; frames must lie in it (or pass --allow-outside-frames)");
+  }
+  std::error_code ec;
+  const fs::path resolved = fs::weakly_canonical(dir / path, ec);
+  const fs::path root = fs::weakly_canonical(dir, ec);
+  const fs::path relative = resolved.lexically_relative(root);
+  if (ec || relative.empty() || *relative.begin() == "..") {
+    fail("resolves outside the capture directory (a link?); frames must lie in it (or pass --allow-outside-frames)");
+  }
 }
 
 Frame frame_from_json(const json& item, std::size_t index, const fs::path& file) {
@@ -101,7 +136,9 @@ void validate(const CaptureManifest& manifest, const fs::path& file) {
   if (manifest.black_level < 0 || manifest.black_level >= full_scale) {
     fail("black_level must be in [0, " + std::to_string(full_scale) + ")");
   }
-  if (manifest.dot_spacing < 0 || manifest.dot_spacing == 1) fail("dot_spacing must be 0 or at least 2");
+  if (manifest.dot_spacing < 0 || manifest.dot_spacing == 1 || manifest.dot_spacing > kMaxDotSpacing) {
+    fail("dot_spacing must be 0 or 2 to " + std::to_string(kMaxDotSpacing));
+  }
   (void)response_gamma(manifest.camera_response, file.string());
   std::map<PatternKind, int> plain_count;
   std::set<std::tuple<int, int, bool>> gray_seen;
@@ -155,17 +192,33 @@ void validate(const CaptureManifest& manifest, const fs::path& file) {
   }
 }
 
-void check_files_exist(const CaptureManifest& manifest, const fs::path& dir, const fs::path& file) {
-  for (const auto& frame : manifest.frames) {
-    if (!fs::is_regular_file(dir / frame.file)) {
-      throw InputError("missing frame: " + (dir / frame.file).string() + " (listed in " + file.string() + ")");
+// Every frame is a regular file, and no file stands for two patterns.
+void check_frame_files(const CaptureManifest& manifest, const fs::path& dir, const fs::path& file) {
+  std::map<fs::path, std::size_t> first_use;
+  for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
+    const fs::path path = dir / manifest.frames[i].file;
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (status.type() == fs::file_type::not_found) {
+      throw InputError("missing frame: " + path.string() + " (listed in " + file.string() + ")");
+    }
+    if (!fs::is_regular_file(status)) {
+      throw InputError("unreadable frame: " + path.string() + " (listed in " + file.string() +
+                       "): " + (ec ? ec.message() : std::string("not a regular file")));
+    }
+    const auto [it, fresh] = first_use.emplace(fs::canonical(path, ec), i);
+    if (!fresh) {
+      throw InputError(file.string() + ": frames[" + std::to_string(it->second) + "] and frames[" + std::to_string(i) +
+                       "] are the same file (" + manifest.frames[i].file + "); every pattern needs its own capture");
     }
   }
 }
 }  // namespace
 
-CaptureManifest read_manifest(const fs::path& capture_dir) {
+CaptureManifest read_manifest(const fs::path& capture_dir, FramePaths frame_paths) {
   const fs::path file = capture_dir / kManifestFileName;
+  std::error_code ec;
+  if (fs::exists(file, ec) && !fs::is_regular_file(file, ec)) throw InputError(file.string() + ": not a regular file");
   std::ifstream in(file);
   if (!in) {
     throw InputError("cannot read " + file.string() +
@@ -175,7 +228,7 @@ CaptureManifest read_manifest(const fs::path& capture_dir) {
   json root;
   try {
     root = json::parse(in);
-  } catch (const json::parse_error& error) {
+  } catch (const json::exception& error) {  // parse_error, out_of_range (a number like 1e999)
     throw InputError(file.string() + ": not valid JSON (" + error.what() + ")");
   }
   if (!root.is_object()) throw InputError(file.string() + ": the top level must be a JSON object");
@@ -187,16 +240,27 @@ CaptureManifest read_manifest(const fs::path& capture_dir) {
   CaptureManifest manifest;
   manifest.projector_size = size_field(root, "projector_size", file);
   manifest.camera_size = root.contains("camera_size") ? size_field(root, "camera_size", file) : cv::Size();
-  manifest.dot_spacing = root.value("dot_spacing", 0);
-  manifest.bit_depth = root.value("bit_depth", 8);
-  manifest.black_level = root.value("black_level", 0.0);
-  manifest.camera_response = root.value("camera_response", std::string("linear"));
+  manifest.dot_spacing = optional_field(root, "dot_spacing", 0, file);
+  manifest.bit_depth = optional_field(root, "bit_depth", 8, file);
+  manifest.black_level = optional_field(root, "black_level", 0.0, file);
+  manifest.camera_response = optional_field(root, "camera_response", std::string("linear"), file);
   const auto frames = field<json>(root, "frames", "", file);
   if (!frames.is_array()) throw InputError(file.string() + ": field 'frames' must be an array");
-  for (std::size_t i = 0; i < frames.size(); ++i) manifest.frames.push_back(frame_from_json(frames[i], i, file));
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (!frames[i].is_object())
+      throw InputError(file.string() + ": frames[" + std::to_string(i) + "] is not an object");
+    manifest.frames.push_back(frame_from_json(frames[i], i, file));
+    check_frame_path(manifest.frames.back().file, capture_dir, frame_paths, "frames[" + std::to_string(i) + "].", file);
+  }
   validate(manifest, file);
-  check_files_exist(manifest, capture_dir, file);
+  check_frame_files(manifest, capture_dir, file);
   return manifest;
+}
+
+std::vector<fs::path> capture_files(const fs::path& capture_dir, const CaptureManifest& manifest) {
+  std::vector<fs::path> files{capture_dir / kManifestFileName};
+  for (const auto& frame : manifest.frames) files.push_back(capture_dir / frame.file);
+  return files;
 }
 
 void write_manifest(const CaptureManifest& manifest, const fs::path& capture_dir) {
@@ -216,9 +280,13 @@ void write_manifest(const CaptureManifest& manifest, const fs::path& capture_dir
 
 CaptureManifest manifest_from_opencv_layout(const fs::path& capture_dir, cv::Size projector_size) {
   static const std::set<std::string> kImageExtensions{".png", ".tif", ".tiff", ".bmp", ".jpg", ".jpeg", ".pgm", ".ppm"};
-  if (!fs::is_directory(capture_dir)) throw InputError("capture directory " + capture_dir.string() + " does not exist");
+  std::error_code ec;
+  if (!fs::is_directory(capture_dir, ec)) {
+    throw InputError("capture directory " + capture_dir.string() + " does not exist");
+  }
+  check_image_size(projector_size, "--projector");
   std::vector<std::string> files;
-  for (const auto& entry : fs::directory_iterator(capture_dir)) {
+  for (const auto& entry : fs::directory_iterator(capture_dir, ec)) {
     std::string extension = entry.path().extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
     if (entry.is_regular_file() && kImageExtensions.count(extension) != 0) {
@@ -236,8 +304,7 @@ CaptureManifest manifest_from_opencv_layout(const fs::path& capture_dir, cv::Siz
   CaptureManifest manifest;
   manifest.projector_size = projector_size;
   for (std::size_t i = 0; i < files.size(); ++i) manifest.frames.push_back({sequence[i], files[i]});
-  const cv::Mat first = cv::imread((capture_dir / files.front()).string(), cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
-  if (first.empty()) throw InputError("cannot read image " + (capture_dir / files.front()).string());
+  const cv::Mat first = decode_image(capture_dir / files.front(), cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
   manifest.bit_depth = first.depth() == CV_8U ? 8 : 16;
   manifest.camera_size = first.size();
   return manifest;
@@ -272,8 +339,7 @@ cv::Mat linearize_frame(const cv::Mat& raw, const CaptureManifest& manifest, con
 
 cv::Mat load_frame(const fs::path& capture_dir, const CaptureManifest& manifest, std::size_t index) {
   const fs::path path = capture_dir / manifest.frames.at(index).file;
-  const cv::Mat raw = cv::imread(path.string(), cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
-  if (raw.empty()) throw InputError("cannot read image " + path.string() + " (missing, unreadable or not an image)");
+  const cv::Mat raw = decode_image(path, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
   return linearize_frame(raw, manifest, path.string());
 }
 

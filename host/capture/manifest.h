@@ -30,9 +30,20 @@ struct CaptureManifest {
   std::vector<Frame> frames;
 };
 
+// Where a manifest's frames may lie: inside the capture directory (relative paths without "..", links that stay
+// inside), or anywhere (`--allow-outside-frames`).
+enum class FramePaths { kInsideCapture, kAnywhere };
+
 // Reads DIR/manifest.json; throws InputError naming the file and the field when it is malformed or inconsistent
-// (e.g. Gray code bit count that does not match the projector size).
-CaptureManifest read_manifest(const std::filesystem::path& capture_dir);
+// (e.g. Gray code bit count that does not match the projector size, sizes over host/core/limits.h), when a frame
+// is missing, lies outside DIR (unless kAnywhere) or is the same file as another frame.
+CaptureManifest read_manifest(const std::filesystem::path& capture_dir,
+                              FramePaths frame_paths = FramePaths::kInsideCapture);
+
+// The files reading the capture touches: DIR/manifest.json (when there is one) and every frame. Outputs are checked
+// against them (host/core/output_path.h).
+std::vector<std::filesystem::path> capture_files(const std::filesystem::path& capture_dir,
+                                                 const CaptureManifest& manifest);
 
 // Writes DIR/manifest.json atomically.
 void write_manifest(const CaptureManifest& manifest, const std::filesystem::path& capture_dir);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "host/core/errors.h"
+#include "host/core/limits.h"
 
 namespace rfrecon::capture {
 
@@ -43,13 +44,15 @@ void check_size(cv::Size projector_size) {
     throw InputError("projector size must be at least 2x2, got " + std::to_string(projector_size.width) + "x" +
                      std::to_string(projector_size.height));
   }
+  check_image_size(projector_size, "projector");
 }
 }  // namespace
 
 std::vector<Pattern> make_protocol(const ProtocolOptions& options) {
   check_size(options.projector_size);
-  if (options.dot_spacing < 0 || options.dot_spacing == 1) {
-    throw InputError("dot spacing must be 0 (no dot grid) or at least 2, got " + std::to_string(options.dot_spacing));
+  if (options.dot_spacing < 0 || options.dot_spacing == 1 || options.dot_spacing > kMaxDotSpacing) {
+    throw InputError("dot spacing must be 0 (no dot grid) or 2 to " + std::to_string(kMaxDotSpacing) + ", got " +
+                     std::to_string(options.dot_spacing));
   }
   std::vector<Pattern> sequence{plain(PatternKind::kWhite), plain(PatternKind::kBlack)};
   append_gray_pairs(sequence, options.projector_size);

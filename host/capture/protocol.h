@@ -19,6 +19,8 @@ struct Pattern {
   int dot_offset_y = -1;  // ... and y % spacing == dot_offset_y
 };
 
+inline constexpr int kMaxDotSpacing = 64;  // s x s = 4096 dot frames at most
+
 struct ProtocolOptions {
   cv::Size projector_size;  // projector resolution in pixels
   int dot_spacing = 0;      // s of the s x s dot-grid scan; 0 = no dot grid (Gray code only)

@@ -6,6 +6,7 @@
 #include "host/cl/device_selection.h"
 #include "host/cli/capture_options.h"
 #include "host/cli/commands.h"
+#include "host/cli/number_checks.h"
 #include "host/cli/size_option.h"
 #include "host/core/errors.h"
 #include "host/pipeline/calibrate_rig.h"
@@ -22,9 +23,9 @@ struct BoardOptions {
 
 calib::BoardSpec board_spec(const BoardOptions& options) {
   const cv::Size size = parse_size(options.board, "--board");
-  if (size.width < 2 || size.height < 2) throw InputError("--board needs at least 2x2 inner corners");
+  if (size.width < 2 || size.height < 2) throw UsageError("--board needs at least 2x2 inner corners");
   if (size.width == size.height) {
-    throw InputError("--board " + options.board +
+    throw UsageError("--board " + options.board +
                      ": use a board whose inner corner counts differ (e.g. 9x6), so its orientation is unambiguous");
   }
   return {size.width, size.height, options.square_mm};
@@ -32,13 +33,12 @@ calib::BoardSpec board_spec(const BoardOptions& options) {
 
 void add_board_options(CLI::App* command, BoardOptions& options) {
   command->add_option("--board", options.board, "Inner corners of the checkerboard, COLSxROWS (e.g. 9x6)")->required();
-  command->add_option("--square", options.square_mm, "Side of one square, in mm")
-      ->required()
-      ->check(CLI::PositiveNumber);
+  command->add_option("--square", options.square_mm, "Side of one square, in mm")->required()->check(finite_positive());
   command
       ->add_option("--distortion", options.distortion,
                    "Lens model: radial (k1 k2), standard (k1 k2 p1 p2, default), full (+ k3, wide-angle lenses) "
                    "or rational (k1..k6 p1 p2)")
+      ->check(CLI::IsMember({"radial", "standard", "full", "rational"}))
       ->capture_default_str();
   command->add_flag("--refine-board", options.refine_board,
                     "Also estimate the board's corner positions (a board not quite flat; needs 15 or more poses)");
@@ -64,6 +64,7 @@ struct CameraOptions {
   BoardOptions board;
   std::filesystem::path output;
   std::filesystem::path report;
+  bool force = false;
 };
 
 void run_calibrate_camera(const CameraOptions& options) {
@@ -73,6 +74,7 @@ void run_calibrate_camera(const CameraOptions& options) {
   request.options = calibration_options(options.board);
   request.output = options.output;
   request.report_dir = options.report.empty() ? calib::default_report_dir(options.output) : options.report;
+  request.force = options.force;
   const auto run = calib::calibrate_camera_from_images(request);
   const auto& result = run.calibration;
   std::printf("%zu of %zu views used; reprojection RMS %.4f px\n", result.view_names.size(), run.images, result.rms);
@@ -90,6 +92,7 @@ struct StereoOptions {
   std::filesystem::path report;
   CaptureOptions capture;
   std::string devices;
+  bool force = false;
 };
 
 void run_calibrate(const StereoOptions& options) {
@@ -100,6 +103,7 @@ void run_calibrate(const StereoOptions& options) {
   request.options = calibration_options(options.board);
   request.output = options.output;
   request.report_dir = options.report.empty() ? calib::default_report_dir(options.output) : options.report;
+  request.force = options.force;
   auto devices = cl::open_devices(options.devices);
   cl::ProgramCache programs;
   const auto run = pipeline::calibrate_rig(request, devices, programs);
@@ -125,25 +129,24 @@ void add_calibrate_commands(CLI::App& app) {
   auto camera = std::make_shared<CameraOptions>();
   auto* camera_command =
       app.add_subcommand("calibrate-camera", "Calibrate a camera alone from checkerboard photographs");
-  camera_command->add_option("images", camera->images, "Checkerboard images (PNG, TIFF, JPEG, ...)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  camera_command->add_option("images", camera->images, "Checkerboard images (PNG, TIFF, JPEG, ...)")->required();
   add_board_options(camera_command, camera->board);
   camera_command->add_option("-o,--output", camera->output, "Calibration file to write (OpenCV YAML)")->required();
   camera_command->add_option("--report", camera->report, "Report directory (default: OUTPUT_STEM_report)");
+  camera_command->add_flag("--force", camera->force, "Replace an existing calibration file and report directory");
   camera_command->callback([camera] { run_calibrate_camera(*camera); });
 
   auto stereo = std::make_shared<StereoOptions>();
   auto* stereo_command = app.add_subcommand(
       "calibrate", "Calibrate camera and projector (dual photography), their stereo pose and rectification");
-  stereo_command->add_option("poses", stereo->poses, "One capture directory per board pose")
-      ->required()
-      ->check(CLI::ExistingDirectory);
+  stereo_command->add_option("poses", stereo->poses, "One capture directory per board pose")->required();
   add_board_options(stereo_command, stereo->board);
   stereo_command->add_option("-o,--output", stereo->output, "Rig file to write (OpenCV YAML)")->required();
   stereo_command->add_option("--report", stereo->report, "Report directory (default: OUTPUT_STEM_report)");
+  stereo_command->add_flag("--force", stereo->force, "Replace an existing rig file and report directory");
   add_capture_options(stereo_command, stereo->capture);
   add_devices_option(stereo_command, stereo->devices);
+  add_tile_timeout_option(stereo_command);
   stereo_command->callback([stereo] { run_calibrate(*stereo); });
 }
 

@@ -13,10 +13,13 @@ void add_capture_options(CLI::App* command, CaptureOptions& options) {
       ->check(CLI::IsMember({"manifest", "opencv-graycode"}))
       ->capture_default_str();
   command->add_option("--projector", options.projector, "Projector resolution WxH (needed by opencv-graycode)");
+  command->add_flag("--allow-outside-frames", options.allow_outside_frames,
+                    "Accept manifest frames outside the capture directory (absolute paths, '..', links)");
 }
 
 transport::CaptureSource capture_source(const CaptureOptions& options) {
-  return {options.layout, options.projector.empty() ? cv::Size() : parse_size(options.projector, "--projector")};
+  return {options.layout, options.projector.empty() ? cv::Size() : parse_size(options.projector, "--projector"),
+          options.allow_outside_frames ? capture::FramePaths::kAnywhere : capture::FramePaths::kInsideCapture};
 }
 
 }  // namespace rfrecon::cli

@@ -10,11 +10,12 @@
 namespace rfrecon::cli {
 
 struct CaptureOptions {
-  std::string layout = "manifest";  // or "opencv-graycode"
-  std::string projector;            // WxH, required by opencv-graycode
+  std::string layout = "manifest";    // or "opencv-graycode"
+  std::string projector;              // WxH, required by opencv-graycode
+  bool allow_outside_frames = false;  // manifest frames may lie outside the capture directory
 };
 
-// Adds --layout and --projector to `command`.
+// Adds --layout, --projector and --allow-outside-frames to `command`.
 void add_capture_options(CLI::App* command, CaptureOptions& options);
 
 // The layout these options name; throws InputError for a malformed --projector.

@@ -21,6 +21,10 @@ class CommandFailed : public std::runtime_error {
 // Adds the standard `--devices` option (see host/cl/device_selection.h) to a subcommand that runs kernels.
 CLI::Option* add_devices_option(CLI::App* command, std::string& selection);
 
+// Adds `--tile-timeout SECONDS` (0, or at least 5) to a subcommand whose kernels run through the scheduler: it sets
+// RFRECON_TILE_TIMEOUT for the process, which every stage reads (docs/scheduler.md).
+void add_tile_timeout_option(CLI::App* command);
+
 void add_devices_command(CLI::App& app);
 void add_selfcheck_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);

@@ -36,7 +36,9 @@ void add_dual_command(CLI::App& app) {
   command->add_flag("--primal", options->request.primal, "Write the primal image T 1 (camera view) instead");
   command->add_option("--summary", options->request.summary,
                       "Also write the timing and per-device shares to this JSON");
+  command->add_flag("--force", options->request.force, "Replace existing output and summary files");
   add_devices_option(command, options->devices);
+  add_tile_timeout_option(command);
   command->callback([options] { run_dual(*options); });
 }
 

@@ -1,13 +1,12 @@
 // `rfrecon evaluate-rig`: an estimated rig (from `calibrate`) against the true rig of `rfrecon simulate`.
 #include <cstdio>
-#include <system_error>
 
 #include <nlohmann/json.hpp>
 
 #include "calib/rig_comparison.h"
 #include "host/cli/commands.h"
 #include "host/core/atomic_file.h"
-#include "host/core/errors.h"
+#include "host/core/output_path.h"
 
 namespace rfrecon::cli {
 
@@ -16,15 +15,12 @@ struct EvaluateRigOptions {
   std::filesystem::path estimated;
   std::filesystem::path truth;
   std::filesystem::path output;
+  bool force = false;
 };
 
 void run_evaluate_rig(const EvaluateRigOptions& options) {
-  std::error_code error;
-  for (const auto& input : {options.estimated, options.truth}) {
-    if (!options.output.empty() && std::filesystem::equivalent(options.output, input, error)) {
-      throw InputError("-o " + options.output.string() + " is the input rig " + input.string() +
-                       "; write the comparison elsewhere");
-    }
+  if (!options.output.empty()) {
+    check_output_file({options.output, "--output", options.force}, {options.estimated, options.truth});
   }
   const auto c = calib::compare_rigs(calib::read_rig(options.estimated), calib::read_rig(options.truth));
   std::printf("camera     focal %.4f%%  principal point %.3f px\n", 100.0 * c.camera_focal_error,
@@ -53,13 +49,10 @@ void run_evaluate_rig(const EvaluateRigOptions& options) {
 void add_evaluate_rig_command(CLI::App& app) {
   auto options = std::make_shared<EvaluateRigOptions>();
   auto* command = app.add_subcommand("evaluate-rig", "Compare a calibrated rig.yaml with the true rig of `simulate`");
-  command->add_option("estimated", options->estimated, "Rig file written by `rfrecon calibrate`")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--truth", options->truth, "True rig file (SIMULATE_OUT/truth/rig.yaml)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  command->add_option("estimated", options->estimated, "Rig file written by `rfrecon calibrate`")->required();
+  command->add_option("--truth", options->truth, "True rig file (SIMULATE_OUT/truth/rig.yaml)")->required();
   command->add_option("-o,--output", options->output, "Also write the comparison as JSON");
+  command->add_flag("--force", options->force, "Replace an existing JSON file");
   command->callback([options] { run_evaluate_rig(*options); });
 }
 

@@ -12,6 +12,7 @@ enum ExitCode : int {
   kExitOpenCl = 5,      // an OpenCL call or kernel build failed on every device that was tried
   kExitProcessing = 6,  // valid input the method cannot process (no board found, too few poses, all masked)
   kExitSelfcheck = 7,   // `rfrecon selfcheck` found a device whose results differ from the C++ reference
+  kExitOutput = 8,      // an output could not be written (permission, read-only file system, disk full)
 };
 
 }  // namespace rfrecon::cli

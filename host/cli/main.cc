@@ -10,6 +10,7 @@
 #include "host/cli/commands.h"
 #include "host/cli/exit_codes.h"
 #include "host/core/errors.h"
+#include "host/core/temporaries.h"
 
 namespace rfrecon::cli {
 
@@ -24,6 +25,7 @@ int fail(int code, const char* kind, const std::exception& error) {
 
 int main(int argc, char** argv) {
   using namespace rfrecon::cli;
+  rfrecon::install_signal_cleanup();
   spdlog::set_default_logger(spdlog::stderr_color_mt("rfrecon"));
   spdlog::set_pattern("[%H:%M:%S] %^%l%$: %v");
 
@@ -56,6 +58,10 @@ int main(int argc, char** argv) {
     return app.exit(error) == 0 ? kExitOk : kExitUsage;
   } catch (const CommandFailed& error) {
     return fail(error.exit_code(), "failed", error);
+  } catch (const rfrecon::UsageError& error) {
+    return fail(kExitUsage, "usage error", error);
+  } catch (const rfrecon::OutputError& error) {
+    return fail(kExitOutput, "cannot write output", error);
   } catch (const rfrecon::InputError& error) {
     return fail(kExitInput, "input error", error);
   } catch (const rfrecon::ProcessingError& error) {

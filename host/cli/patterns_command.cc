@@ -2,6 +2,7 @@
 #include <spdlog/spdlog.h>
 
 #include "host/capture/pattern_files.h"
+#include "host/capture/protocol.h"
 #include "host/cli/commands.h"
 #include "host/cli/size_option.h"
 
@@ -29,8 +30,9 @@ void add_patterns_command(CLI::App& app) {
   auto options = std::make_shared<PatternsOptions>();
   auto* command = app.add_subcommand("patterns", "Write the projector pattern sequence (Gray code, dot grid)");
   command->add_option("--projector", options->projector, "Projector resolution WxH, e.g. 1024x768")->required();
-  command->add_option("--out", options->out, "Output directory (created)")->required();
+  command->add_option("-o,--output", options->out, "Output directory (created)")->required();
   command->add_option("--dot-spacing", options->dot_spacing, "Dot grid spacing s (s x s frames); 0 = Gray code only")
+      ->check(CLI::Range(0, capture::kMaxDotSpacing))
       ->capture_default_str();
   command->add_flag("--force", options->force, "Replace an existing non-empty output directory");
   command->callback([options] { run_patterns(*options); });

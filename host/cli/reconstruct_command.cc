@@ -3,6 +3,7 @@
 
 #include "host/cl/device_selection.h"
 #include "host/cli/commands.h"
+#include "host/cli/number_checks.h"
 #include "host/pipeline/reconstruct_scan.h"
 
 namespace rfrecon::cli {
@@ -40,12 +41,13 @@ void add_reconstruct_command(CLI::App& app) {
   command->add_option("transport", options->request.transport, "Compressed light transport (T.h5)")->required();
   command->add_option("--calib", options->request.rig, "Calibrated rig (rig.yaml from `rfrecon calibrate`)")
       ->required();
-  command->add_option("-o,--out", options->request.out_dir, "Output directory (docs/formats.md)")->required();
+  command->add_option("-o,--output", options->request.out_dir, "Output directory (docs/formats.md)")->required();
   command->add_option("--method", options->method, "triangulate, integrate (reciprocity ODE) or fused")
       ->check(CLI::IsMember({"triangulate", "integrate", "fused"}))
       ->capture_default_str();
   command->add_flag("--force", options->request.force, "Replace an existing output directory");
   add_devices_option(command, options->devices);
+  add_tile_timeout_option(command);
   command->add_option("--entry", options->entry, "Kernel entry: ndrange or single (single work-item, FPGA)")
       ->check(CLI::IsMember({"ndrange", "single"}))
       ->capture_default_str();
@@ -53,14 +55,18 @@ void add_reconstruct_command(CLI::App& app) {
   command
       ->add_option("--epipolar-tolerance", depth.rectification.epipolar_tolerance_px,
                    "Reject correspondences further than this from their rectified row (px)")
+      ->check(finite_positive())
       ->capture_default_str();
   command
       ->add_option("--saturation", depth.rectification.saturation,
                    "Drop pixels with a T entry at or above this (linear, 1 = full scale)")
+      ->check(finite_positive())
       ->capture_default_str();
   command->add_option("--jump", depth.segmentation.jump_relative, "Relative depth step that ends a run")
+      ->check(finite_positive())
       ->capture_default_str();
   command->add_option("--crease", depth.segmentation.crease_deg, "Change of in-row slope that ends a run (deg)")
+      ->check(finite_positive())
       ->capture_default_str();
   command->add_option("--passes", depth.integration.passes, "Shooting passes of the integration")
       ->check(CLI::Range(1, 20))
@@ -69,10 +75,10 @@ void add_reconstruct_command(CLI::App& app) {
       ->check(CLI::Range(1, 20))
       ->capture_default_str();
   command->add_option("--sigma-disparity", depth.fusion.sigma_disparity_px, "Disparity noise, px (fusion weight)")
-      ->check(CLI::PositiveNumber)
+      ->check(finite_positive())
       ->capture_default_str();
   command->add_option("--sigma-step", depth.fusion.sigma_step_mm, "ODE step error, mm (fusion weight)")
-      ->check(CLI::PositiveNumber)
+      ->check(finite_positive())
       ->capture_default_str();
   command->callback([options] { run_reconstruct(*options); });
 }

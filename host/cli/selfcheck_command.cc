@@ -32,7 +32,9 @@ void add_selfcheck_command(CLI::App& app) {
   auto options = std::make_shared<SelfcheckOptions>();
   auto* command = app.add_subcommand("selfcheck", "Run a small kernel on each device and compare with C++");
   add_devices_option(command, options->selection);
-  command->add_option("--size", options->size, "Number of elements")->check(CLI::PositiveNumber);
+  command->add_option("--size", options->size, "Number of elements")
+      ->check(CLI::Range(std::size_t{1}, selfcheck::kMaxSelfcheckElements))
+      ->capture_default_str();
   command->callback([options] { run_selfcheck(*options); });
 }
 

@@ -1,9 +1,13 @@
 // `rfrecon simulate`: renders a built-in or file scene with the synthetic rig into a capture + ground-truth directory.
+#include <filesystem>
 #include <iostream>
 #include <optional>
+#include <system_error>
+#include <vector>
 
 #include <spdlog/spdlog.h>
 
+#include "host/capture/protocol.h"
 #include "host/cli/commands.h"
 #include "host/cli/size_option.h"
 #include "host/core/errors.h"
@@ -36,8 +40,8 @@ void run_simulate(const SimulateCommandOptions& o) {
     for (const auto& info : sim::builtin_rigs()) std::cout << "  " << info.name << "\t" << info.description << "\n";
     return;
   }
-  if (o.scene.empty()) throw InputError("--scene is required (a built-in name, see --list, or a scene file)");
-  if (o.out.empty()) throw InputError("--out is required");
+  if (o.scene.empty()) throw CLI::RequiredError("--scene (a built-in name, see --list, or a scene file)");
+  if (o.out.empty()) throw CLI::RequiredError("--output");
   sim::Scene scene = sim::resolve_scene(o.scene, o.rig);
   if (!o.camera_size.empty()) sim::resize_device(scene.camera, parse_size(o.camera_size, "--camera"));
   if (!o.projector_size.empty()) sim::resize_device(scene.projector, parse_size(o.projector_size, "--projector"));
@@ -50,7 +54,10 @@ void run_simulate(const SimulateCommandOptions& o) {
   spdlog::info("simulate: scene '{}', camera {}x{}, projector {}x{}, supersample {}x{}, seed {}", scene.name,
                scene.camera.size.width, scene.camera.size.height, scene.projector.size.width,
                scene.projector.size.height, scene.render.supersample, scene.render.supersample, scene.render.seed);
-  sim::simulate(scene, o.out, {o.threads, o.force});
+  std::vector<std::filesystem::path> inputs;
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(o.scene, ec)) inputs.emplace_back(o.scene);
+  sim::simulate(scene, o.out, {o.threads, o.force, inputs});
   spdlog::info("simulate: wrote {}", o.out);
 }
 }  // namespace
@@ -60,7 +67,7 @@ void add_simulate_command(CLI::App& app) {
   auto* command = app.add_subcommand("simulate", "Render a synthetic projector-camera capture with ground truth");
   command->add_option("--scene", o->scene, "Built-in scene name (see --list) or scene JSON file");
   command->add_option("--rig", o->rig, "Built-in rig (see --list) replacing the scene's camera and projector");
-  command->add_option("--out", o->out, "Output directory (must not exist or be empty, unless --force)");
+  command->add_option("-o,--output", o->out, "Output directory (must not exist or be empty, unless --force)");
   command->add_option("--seed", o->seed, "Noise seed (default: the scene's render.seed, 1)");
   command->add_flag("--force", o->force, "Replace a non-empty output directory");
   command->add_flag("--list", o->list, "Print the built-in scenes and rigs and exit");
@@ -71,8 +78,8 @@ void add_simulate_command(CLI::App& app) {
   command
       ->add_option("--dot-spacing", o->dot_spacing,
                    "Dot grid spacing s of the capture; 0 = Gray code, white and black only (default: the scene's)")
-      ->check(CLI::Range(0, 64));
-  command->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, capture::kMaxDotSpacing));
+  command->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(0, 1024));
   command->callback([o] { run_simulate(*o); });
 }
 

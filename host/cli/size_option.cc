@@ -4,6 +4,7 @@
 #include <charconv>
 
 #include "host/core/errors.h"
+#include "host/core/limits.h"
 
 namespace rfrecon::cli {
 
@@ -22,9 +23,12 @@ cv::Size parse_size(const std::string& text, const std::string& option) {
   int height = 0;
   if (separator != std::string::npos && parse_dimension(text.data(), text.data() + separator, width) &&
       parse_dimension(text.data() + separator + 1, text.data() + text.size(), height) && width > 0 && height > 0) {
+    if (width > kMaxImageSide || height > kMaxImageSide) {
+      throw UsageError(option + " " + text + ": at most " + std::to_string(kMaxImageSide) + " px a side");
+    }
     return {width, height};
   }
-  throw InputError(option + ": expected WIDTHxHEIGHT with positive integers (e.g. 1024x768), got '" + text + "'");
+  throw UsageError(option + ": expected WIDTHxHEIGHT with positive integers (e.g. 1024x768), got '" + text + "'");
 }
 
 }  // namespace rfrecon::cli

@@ -7,7 +7,8 @@
 
 namespace rfrecon::cli {
 
-// "1024x768" -> {1024, 768}; throws InputError naming `option` unless both are positive integers.
+// "1024x768" -> {1024, 768}; throws UsageError naming `option` unless both are positive integers of at most
+// kMaxImageSide (host/core/limits.h).
 cv::Size parse_size(const std::string& text, const std::string& option);
 
 }  // namespace rfrecon::cli

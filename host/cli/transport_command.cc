@@ -6,6 +6,7 @@
 #include "host/cl/device_selection.h"
 #include "host/cli/capture_options.h"
 #include "host/cli/commands.h"
+#include "host/cli/number_checks.h"
 #include "host/pipeline/transport_capture.h"
 
 namespace rfrecon::cli {
@@ -46,18 +47,24 @@ void add_transport_command(CLI::App& app) {
   command->add_option("-o,--output", options->request.output, "Output file (T.h5)")->required();
   command->add_option("--summary", options->request.summary,
                       "Also write stage timings and per-device shares to this JSON");
+  command->add_flag("--force", options->request.force, "Replace existing output and summary files");
   add_capture_options(command, options->capture);
   add_devices_option(command, options->devices);
+  add_tile_timeout_option(command);
   auto& setup = options->request.setup;
   command->add_option("-k,--entries", setup.entries_per_pixel, "Entries kept per camera pixel (K)")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
   command->add_option("--black-threshold", setup.thresholds.black, "Lit when white - black exceeds this (linear)")
+      ->check(finite_non_negative())
       ->capture_default_str();
   command->add_option("--white-threshold", setup.thresholds.white, "Gray bit trusted when |pattern - inverse| exceeds")
+      ->check(finite_non_negative())
       ->capture_default_str();
-  command->add_option("--noise-threshold", setup.thresholds.noise,
-                      "Transport entries at or below are dropped (default: 2.5 DN at the capture's bit depth)");
+  command
+      ->add_option("--noise-threshold", setup.thresholds.noise,
+                   "Transport entries at or below are dropped (default: 2.5 DN at the capture's bit depth)")
+      ->check(finite_non_negative());
   command->add_option("--entry", options->entry, "Kernel entry: ndrange or single (single work-item, FPGA)")
       ->check(CLI::IsMember({"ndrange", "single"}))
       ->capture_default_str();

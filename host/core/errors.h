@@ -11,6 +11,20 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A command line that asks for something no input could make right: an output that is a device, a directory where
+// a file is meant, one of the command's own inputs, or an existing file without --force.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// An output that could not be written (permission, read-only file system, disk full). Nothing is left under the
+// output's name; the message names it and the cause.
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 // Valid input that the method cannot process: no checkerboard found, too few poses, everything masked.
 class ProcessingError : public std::runtime_error {
  public:

@@ -13,8 +13,13 @@ std::string size_text(cv::Size size);
 
 // cv::imwrite by extension; float images go to TIFF uncompressed (OpenCV 4.6 corrupts multi-channel float TIFFs
 // with its default LZW). Not atomic by itself: write into a StagingDirectory or AtomicFile temporary. Throws
-// std::runtime_error naming the file when it cannot be written.
+// OutputError naming the file when it cannot be written.
 void write_image(const std::filesystem::path& file, const cv::Mat& image);
+
+// cv::imread(file, flags) with the checks every image read needs: a regular file, the size its header declares
+// (PNG, TIFF) within host/core/limits.h before anything is decoded, and every decoder failure an InputError
+// naming the file. Never returns an empty image.
+cv::Mat decode_image(const std::filesystem::path& file, int flags);
 
 // Reads `file` unchanged and checks that it holds `type` (e.g. CV_32FC3). Throws InputError naming the file when
 // it is missing, cannot be decoded or has another type.

@@ -12,7 +12,7 @@ nlohmann::json read_json_file(const std::filesystem::path& file) {
   if (!in) throw InputError("cannot read " + file.string());
   try {
     return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& error) {
+  } catch (const nlohmann::json::exception& error) {  // parse_error, out_of_range (a number like 1e999)
     throw InputError(file.string() + ": not valid JSON (" + error.what() + ")");
   }
 }

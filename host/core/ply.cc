@@ -31,7 +31,8 @@ bool is_property_name(const std::string& name) {
   for (const char c : name) {
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
   }
-  return name != "x" && name != "y" && name != "z" && name != "nx" && name != "ny" && name != "nz";
+  return name != "x" && name != "y" && name != "z" && name != "nx" && name != "ny" && name != "nz" && name != "u" &&
+         name != "v";
 }
 }  // namespace
 
@@ -55,17 +56,26 @@ void write_point_cloud_ply(const std::filesystem::path& file, const std::string&
     for (int x = 0; x < points.cols; ++x) {
       const cv::Vec3f& p = points.at<cv::Vec3f>(y, x);
       if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) continue;
-      const cv::Vec3f& n = normals.at<cv::Vec3f>(y, x);
-      for (const float value : {p[0], p[1], p[2], n[0], n[1], n[2]}) append_little_endian(body, value);
-      for (const auto& scalar : scalars) append_little_endian(body, scalar.values.at<float>(y, x));
+      cv::Vec3f n = normals.at<cv::Vec3f>(y, x);
+      if (!(std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2]))) n = cv::Vec3f(0.0f, 0.0f, 0.0f);
+      for (const float value : {p[0], p[1], p[2], n[0], n[1], n[2], static_cast<float>(x), static_cast<float>(y)}) {
+        append_little_endian(body, value);
+      }
+      for (const auto& scalar : scalars) {
+        const float value = scalar.values.at<float>(y, x);
+        append_little_endian(body, std::isfinite(value) ? value : 0.0f);
+      }
       ++count;
     }
   }
 
   std::string header = "ply\nformat binary_little_endian 1.0\n";
   if (!comment.empty()) header += "comment " + comment + "\n";
+  header += "comment u v: camera pixel (column, row); normal 0 0 0: none estimated\n";
   header += "element vertex " + std::to_string(count) + "\n";
-  for (const char* name : {"x", "y", "z", "nx", "ny", "nz"}) header += std::string("property float ") + name + "\n";
+  for (const char* name : {"x", "y", "z", "nx", "ny", "nz", "u", "v"}) {
+    header += std::string("property float ") + name + "\n";
+  }
   for (const auto& scalar : scalars) header += "property float " + scalar.name + "\n";
   header += "end_header\n";
   write_file_atomically(file, header + body);

@@ -128,7 +128,9 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
           [&](sched::Worker& worker, const sched::Tile& tile) {
             const int first = static_cast<int>(tile.begin), end = static_cast<int>(tile.end);
             const auto z = solve(worker.device(), first, end);
-            std::copy(z.begin(), z.end(), z_rect.begin() + static_cast<std::ptrdiff_t>(first) * rows.width);
+            worker.deliver([&] {
+              std::copy(z.begin(), z.end(), z_rect.begin() + static_cast<std::ptrdiff_t>(first) * rows.width);
+            });
           },
           tiles));
       clock.lap(stage);
@@ -157,6 +159,22 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
   summary["devices"] = nlohmann::json::array();
   for (const auto& device : devices) summary["devices"].push_back(device.info().device_name);
   if (reconstructed == 0) throw ProcessingError("nothing reconstructed: every pixel was masked");
+  if (2 * reconstructed < triangulation.correspondences) {
+    std::string why = std::to_string(triangulation.off_epipolar) + " off their epipolar line by more than " +
+                      fmt::format("{:g}", options.rectification.epipolar_tolerance_px) + " px (--epipolar-tolerance; " +
+                      "is " + rig_name + " this capture's calibration?), " +
+                      std::to_string(triangulation.boundary_pixels) + " on object boundaries";
+    if (summary.contains("segmentation")) {
+      why += ", " + std::to_string(summary["segmentation"]["usable_pixels"].get<int>()) +
+             " usable rectified samples for the integration (others lack primal or dual signal, or saturate: "
+             "--saturation)";
+    }
+    const std::string warning = "only " + std::to_string(reconstructed) + " of the " +
+                                std::to_string(triangulation.correspondences) +
+                                " pixels with a correspondence were reconstructed: " + why;
+    spdlog::warn("reconstruct: {}", warning);
+    summary["warnings"].push_back(warning);
+  }
   return run;
 }
 

@@ -14,6 +14,7 @@ struct EvaluationRequest {
   std::string object;                        // empty: the first object
   std::filesystem::path report;              // default: reconstruction_dir / evaluation.json
   std::filesystem::path error_map;           // default: reconstruction_dir / error_map.png
+  bool force = false;                        // replace an existing report and error map
 };
 
 struct EvaluationRun {
@@ -22,8 +23,9 @@ struct EvaluationRun {
   std::filesystem::path error_map;
 };
 
-// Reads both, evaluates and writes the report and the error map (each atomically). Throws InputError naming the file
-// for a missing or mis-sized map, ProcessingError when the object is not visible.
+// Reads both, evaluates and writes the report and the error map (each atomically). Throws UsageError before reading
+// for outputs that host/core/output_path.h refuses (an input, an existing file without force), InputError naming the
+// file for a missing or mis-sized map, ProcessingError when the object is not visible.
 EvaluationRun evaluate_directory(const EvaluationRequest& request);
 
 }  // namespace rfrecon::evaluation

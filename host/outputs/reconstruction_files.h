@@ -9,6 +9,9 @@
 
 namespace rfrecon::outputs {
 
+// The maps read_reconstruction reads back, in its directory.
+inline constexpr const char* kReconstructionMaps[] = {"depth.tiff", "normals.tiff", "confidence.tiff"};
+
 // Writes `out_dir` through a StagingDirectory (it appears whole or not at all): depth.tiff, normals.tiff,
 // confidence.tiff, points.ply (pixels with finite points; x y z nx ny nz quality = confidence), the previews
 // depth.png, normals.png and confidence.png, and summary.json (`summary`, pretty-printed). An existing out_dir that

@@ -12,7 +12,9 @@
 #include "host/core/atomic_file.h"
 #include "host/core/errors.h"
 #include "host/core/image_file.h"
+#include "host/core/output_path.h"
 #include "host/core/progress.h"
+#include "host/transport/compute_transport.h"
 
 namespace rfrecon::pipeline {
 
@@ -39,6 +41,18 @@ std::string pose_name(const fs::path& pose_dir) {
 
 RigCalibrationRun calibrate_rig(const RigCalibrationRequest& request, std::vector<cl::DeviceContext>& devices,
                                 cl::ProgramCache& programs) {
+  std::vector<fs::path> inputs;
+  for (const auto& pose_dir : request.pose_dirs) {
+    const auto manifest = transport::open_capture(pose_dir, request.source.layout, request.source.projector_size,
+                                                  request.source.frame_paths);
+    const auto files = capture::capture_files(pose_dir, manifest);
+    inputs.insert(inputs.end(), files.begin(), files.end());
+  }
+  const OutputPath output{request.output, "--output", request.force};
+  const OutputPath report_output{request.report_dir, "--report", request.force};
+  check_output_file(output, inputs);
+  check_output_directory(report_output, inputs);
+  check_distinct_outputs({output, report_output});
   RigCalibrationRun run;
   run.poses = request.pose_dirs.size();
   StagingDirectory report(request.report_dir, true);
@@ -81,8 +95,8 @@ RigCalibrationRun calibrate_rig(const RigCalibrationRequest& request, std::vecto
   for (const auto& warning : run.calibration.warnings) spdlog::warn("calibrate: {}", warning);
   calib::write_stereo_report(report.path(), run.calibration, views);
   write_file_atomically(report.path() / "schedule.json", nlohmann::json(run.schedule).dump(2) + "\n");
+  report.commit();  // the secondary output first: a report that cannot be moved into place fails before rig.yaml
   calib::write_rig(run.calibration.rig, request.output);
-  report.commit();
   return run;
 }
 

@@ -19,6 +19,7 @@ struct RigCalibrationRequest {
   calib::CalibrationOptions options;
   std::filesystem::path output;      // rig.yaml, written atomically
   std::filesystem::path report_dir;  // camera and dual images with corners, error chart, schedule.json; written whole
+  bool force = false;                // replace an existing rig file and report directory
 };
 
 struct RigCalibrationRun {
@@ -29,9 +30,10 @@ struct RigCalibrationRun {
 };
 
 // For each pose: T and T^T 1 on `devices`, corners in both images (a pose without the board is skipped with a
-// warning); then calibrates, writes the report and then rig.yaml. Throws InputError for a bad capture or mixed
-// sizes (naming the pose), ProcessingError (after writing the report, which it names) when no pose or too few remain
-// or the poses are degenerate: no rig.yaml is written then.
+// warning); then calibrates, writes the report and then rig.yaml. Throws UsageError before any work for outputs that
+// host/core/output_path.h refuses (one of the captures' files, an existing one without force), InputError for a bad
+// capture or mixed sizes (naming the pose), ProcessingError (after writing the report, which it names) when no pose or
+// too few remain or the poses are degenerate: no rig.yaml is written then.
 RigCalibrationRun calibrate_rig(const RigCalibrationRequest& request, std::vector<cl::DeviceContext>& devices,
                                 cl::ProgramCache& programs);
 

@@ -8,6 +8,7 @@
 
 #include "calib/camera_from_images.h"
 #include "host/core/atomic_file.h"
+#include "host/core/output_path.h"
 #include "host/evaluation/evaluation.h"
 #include "host/pipeline/calibrate_rig.h"
 #include "host/pipeline/reconstruct_scan.h"
@@ -26,7 +27,7 @@ constexpr const char* kObjectScene = "cube-anisotropic";
 
 void render(const std::string& scene, const std::string& rig, const fs::path& out_dir) {
   spdlog::info("demo: render {} on the {} rig into {}", scene, rig, out_dir.string());
-  sim::simulate(sim::resolve_scene(scene, rig), out_dir, {0, true});
+  sim::simulate(sim::resolve_scene(scene, rig), out_dir, {0, true, {}});
 }
 
 std::vector<fs::path> pose_dirs(const fs::path& rendering) {
@@ -40,8 +41,9 @@ std::vector<fs::path> pose_dirs(const fs::path& rendering) {
 }
 }  // namespace
 
-DemoRun run_demo(const fs::path& out_dir, const std::string& rig, std::vector<cl::DeviceContext>& devices,
+DemoRun run_demo(const fs::path& out_dir, const std::string& rig, bool force, std::vector<cl::DeviceContext>& devices,
                  cl::ProgramCache& programs) {
+  check_output_directory({out_dir, "--output", force}, {});
   const auto start = std::chrono::steady_clock::now();
   DemoRun demo;
   demo.scene = kObjectScene;
@@ -55,6 +57,7 @@ DemoRun run_demo(const fs::path& out_dir, const std::string& rig, std::vector<cl
   calibration.board = {9, 6, 30.0};
   calibration.output = out_dir / "rig.yaml";
   calibration.report_dir = calib::default_report_dir(calibration.output);
+  calibration.force = true;
   spdlog::info("demo: calibrate camera and projector from {} poses", calibration.pose_dirs.size());
   const auto calibrated = calibrate_rig(calibration, devices, programs);
   spdlog::info("demo: stereo reprojection RMS {:.4f} px over {} poses", calibrated.calibration.rig.rms,
@@ -64,6 +67,7 @@ DemoRun run_demo(const fs::path& out_dir, const std::string& rig, std::vector<cl
   TransportRequest transport;
   transport.capture_dir = cube / "capture";
   transport.output = cube / "T.h5";
+  transport.force = true;
   spdlog::info("demo: light transport of {}", transport.capture_dir.string());
   transport_capture(transport, devices, programs);
 

@@ -31,9 +31,10 @@ struct DemoRun {
 };
 
 // Writes OUT/checkerboard-poses/, OUT/rig.yaml (+ report), OUT/cube-anisotropic/ (with T.h5), OUT/METHOD/ per method
-// (with evaluation.json and error_map.png) and OUT/demo.json; each replaces an earlier demo's.
-// `rig` names a built-in rig (sim/builtin_rigs.h); empty = the scenes' default.
-DemoRun run_demo(const std::filesystem::path& out_dir, const std::string& rig, std::vector<cl::DeviceContext>& devices,
-                 cl::ProgramCache& programs);
+// (with evaluation.json and error_map.png) and OUT/demo.json. OUT must be absent or empty unless `force` (then the
+// demo's files replace those there); UsageError otherwise. `rig` names a built-in rig (sim/builtin_rigs.h); empty =
+// the scenes' default.
+DemoRun run_demo(const std::filesystem::path& out_dir, const std::string& rig, bool force,
+                 std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs);
 
 }  // namespace rfrecon::pipeline

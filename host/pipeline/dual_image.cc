@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -10,6 +11,7 @@
 
 #include "host/core/atomic_file.h"
 #include "host/core/errors.h"
+#include "host/core/output_path.h"
 #include "host/core/percentile.h"
 #include "host/core/stage_clock.h"
 #include "host/transport/spmv.h"
@@ -31,15 +33,31 @@ std::vector<unsigned char> encode(const cv::Mat& image, const std::filesystem::p
   white = std::isnan(percentile) ? 1.0f : std::max(percentile, 1e-12f);
   cv::Mat scaled;
   image.convertTo(scaled, CV_16U, 65535.0 / white);
-  if (!cv::imencode(extension.empty() ? ".png" : extension, scaled, bytes)) {
-    throw InputError(output.string() + ": cannot encode an image with extension '" + extension + "'");
+  if (!cv::imencode(extension, scaled, bytes)) {
+    throw UsageError("--output " + output.string() + ": cannot encode an image with extension '" + extension + "'");
   }
   return bytes;
+}
+
+// The output's extension is one OpenCV writes 16-bit images as, or a TIFF (float).
+void check_image_extension(const std::filesystem::path& output) {
+  std::string extension = output.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
+  if (extension != ".png" && extension != ".tif" && extension != ".tiff" && extension != ".pgm") {
+    throw UsageError("--output " + output.string() +
+                     ": the extension must be .png, .pgm (16-bit) or .tif/.tiff (float)");
+  }
 }
 }  // namespace
 
 DualImageRun dual_image(const DualImageRequest& request, std::vector<cl::DeviceContext>& devices,
                         cl::ProgramCache& programs) {
+  const OutputPath output{request.output, "--output", request.force};
+  const OutputPath summary_output{request.summary, "--summary", request.force};
+  check_output_file(output, {request.transport});
+  check_image_extension(request.output);
+  if (!request.summary.empty()) check_output_file(summary_output, {request.transport});
+  check_distinct_outputs({output, summary_output});
   const auto transport = transport::read_transport(request.transport);
   const auto entry = transport::KernelEntry::kNdRange;
   DualImageRun run;
@@ -58,14 +76,19 @@ DualImageRun dual_image(const DualImageRequest& request, std::vector<cl::DeviceC
   run.seconds = clock.total_seconds();
   const cv::Mat image(run.size, CV_32F, run.product.image.data());
   const auto bytes = encode(image, request.output, run.white);
-  write_file_atomically(request.output, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  AtomicFile image_file(request.output);
+  image_file.write(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  std::optional<AtomicFile> summary_file;
   if (!request.summary.empty()) {
     const nlohmann::json summary = {{"command", request.primal ? "primal" : "dual"},
                                     {"output", request.output.string()},
                                     {"kernel_seconds", run.seconds},
                                     {"schedule", nlohmann::json::array({run.product.report})}};
-    write_file_atomically(request.summary, summary.dump(2) + "\n");
+    summary_file.emplace(request.summary);
+    summary_file->write(summary.dump(2) + "\n");
   }
+  image_file.commit();
+  if (summary_file) summary_file->commit();
   return run;
 }
 

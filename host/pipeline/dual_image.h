@@ -13,6 +13,7 @@ struct DualImageRequest {
   bool primal = false;              // T 1 (camera view) instead of T^T 1
   std::filesystem::path output;     // .tif/.tiff: float values of T's units; else 16-bit, the 99.9th percentile 65535
   std::filesystem::path summary;    // optional JSON of the timing and per-device shares
+  bool force = false;               // replace existing output and summary files
 };
 
 struct DualImageRun {
@@ -22,7 +23,9 @@ struct DualImageRun {
   double seconds = 0.0;
 };
 
-// Throws InputError naming the file for a bad T.h5 or an output extension OpenCV cannot encode.
+// Throws UsageError (before reading) for an output check_output_file refuses or an extension other than .png, .pgm,
+// .tif, .tiff; InputError naming the file for a bad T.h5; OutputError when an output cannot be written. The image
+// and the summary are renamed into place only once both are written.
 DualImageRun dual_image(const DualImageRequest& request, std::vector<cl::DeviceContext>& devices,
                         cl::ProgramCache& programs);
 

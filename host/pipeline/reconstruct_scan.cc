@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include "calib/rig.h"
+#include "host/core/output_path.h"
 #include "host/outputs/reconstruction_files.h"
 #include "host/transport/transport_file.h"
 
@@ -11,6 +12,7 @@ namespace rfrecon::pipeline {
 
 ReconstructRun reconstruct_scan(const ReconstructRequest& request, std::vector<cl::DeviceContext>& devices,
                                 cl::ProgramCache& programs) {
+  check_output_directory({request.out_dir, "--output", request.force}, {request.transport, request.rig});
   const auto transport = transport::read_transport(request.transport);
   const auto rig = calib::read_rig(request.rig);
   spdlog::info("reconstruct: {} from {} with {} on {}", depth::method_name(request.depth.method),

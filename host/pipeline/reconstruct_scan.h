@@ -21,8 +21,9 @@ struct ReconstructRun {
   int camera_pixels = 0;
 };
 
-// Throws InputError naming the file (bad T.h5 or rig, sizes that differ, a rig that cannot be rectified, an
-// existing out_dir without force) and ProcessingError when nothing can be reconstructed; out_dir is then untouched.
+// Throws UsageError before any work when out_dir is not a directory, holds an input, or is not empty without
+// force; InputError naming the file (bad T.h5 or rig, sizes that differ, a rig that cannot be rectified) and
+// ProcessingError when nothing can be reconstructed; out_dir is then untouched.
 ReconstructRun reconstruct_scan(const ReconstructRequest& request, std::vector<cl::DeviceContext>& devices,
                                 cl::ProgramCache& programs);
 

@@ -1,9 +1,15 @@
 // Capture to T.h5: transport stage, file writing and the summary JSON.
 #include "host/pipeline/transport_capture.h"
 
+#include <optional>
+
 #include <nlohmann/json.hpp>
 
 #include "host/core/atomic_file.h"
+#include "host/core/errors.h"
+#include "host/core/image_file.h"
+#include "host/core/limits.h"
+#include "host/core/output_path.h"
 #include "host/core/stage_clock.h"
 #include "host/transport/transport_file.h"
 
@@ -11,18 +17,37 @@ namespace rfrecon::pipeline {
 
 TransportFileRun transport_capture(const TransportRequest& request, std::vector<cl::DeviceContext>& devices,
                                    cl::ProgramCache& programs) {
-  const auto manifest =
-      transport::open_capture(request.capture_dir, request.source.layout, request.source.projector_size);
+  const auto manifest = transport::open_capture(request.capture_dir, request.source.layout,
+                                                request.source.projector_size, request.source.frame_paths);
+  const auto inputs = capture::capture_files(request.capture_dir, manifest);
+  const OutputPath output{request.output, "--output", request.force};
+  const OutputPath summary_output{request.summary, "--summary", request.force};
+  check_output_file(output, inputs);
+  if (!request.summary.empty()) check_output_file(summary_output, inputs);
+  check_distinct_outputs({output, summary_output});
+
+  const double camera_pixels = static_cast<double>(manifest.camera_size.area());
+  check_memory(camera_pixels * (2.0 * 8.0 * request.setup.entries_per_pixel + 64.0),
+               "the light transport of a " + size_text(manifest.camera_size) +
+                   " camera with K = " + std::to_string(request.setup.entries_per_pixel));
   TransportFileRun file_run;
   file_run.run = transport::compute_transport_on_devices(request.capture_dir, manifest, request.setup, devices,
                                                          programs, request.entry);
-  StageClock clock;
-  clock.time("write T.h5", [&] { transport::write_transport(file_run.run.transport, request.output); });
-  file_run.run.timings.push_back(clock.timings().front());
   for (const auto flags : file_run.run.transport.flags) {
     file_run.decoded_pixels += (flags & transport::kFlagValid) != 0 ? 1 : 0;
   }
+  if (file_run.decoded_pixels == 0) {
+    throw ProcessingError(request.capture_dir.string() +
+                          ": no camera pixel decoded (every Gray code pattern reads like its inverse, or nothing is "
+                          "lit above --black-threshold); check that each pattern and its inverse are different "
+                          "captures of a lit scene. Nothing was written.");
+  }
+  AtomicFile t_file(request.output);
+  StageClock clock;
+  clock.time("write T.h5", [&] { transport::write_transport(file_run.run.transport, t_file.temp_path()); });
+  file_run.run.timings.push_back(clock.timings().front());
   for (const auto& timing : file_run.run.timings) file_run.total_seconds += timing.seconds;
+  std::optional<AtomicFile> summary_file;
   if (!request.summary.empty()) {
     nlohmann::json summary = {{"command", "transport"},
                               {"output", request.output.string()},
@@ -31,8 +56,11 @@ TransportFileRun transport_capture(const TransportRequest& request, std::vector<
                               {"total_seconds", file_run.total_seconds},
                               {"schedule", file_run.run.schedule}};
     for (const auto& timing : file_run.run.timings) summary["stage_seconds"][timing.stage] = timing.seconds;
-    write_file_atomically(request.summary, summary.dump(2) + "\n");
+    summary_file.emplace(request.summary);
+    summary_file->write(summary.dump(2) + "\n");
   }
+  t_file.commit();
+  if (summary_file) summary_file->commit();
   return file_run;
 }
 

@@ -16,6 +16,7 @@ struct TransportRequest {
   transport::KernelEntry entry = transport::KernelEntry::kNdRange;
   std::filesystem::path output;   // T.h5, written atomically
   std::filesystem::path summary;  // optional JSON of timings and shares
+  bool force = false;             // replace existing output and summary files
 };
 
 struct TransportFileRun {
@@ -24,8 +25,11 @@ struct TransportFileRun {
   double total_seconds = 0.0;
 };
 
-// Decodes and compresses the capture on `devices` and writes T.h5 (and the summary). Throws InputError for a bad
-// capture (naming the file) and sched::AllDevicesFailed when no device is left.
+// Decodes and compresses the capture on `devices` and writes T.h5 (and the summary), both renamed into place only
+// once both are written. Throws UsageError (before any work) for an output that check_output_file refuses (an input
+// of the capture, a device, an existing file without force), InputError for a bad capture (naming the file),
+// ProcessingError when no pixel decodes, OutputError when an output cannot be written, and
+// sched::AllDevicesFailed when no device is left.
 TransportFileRun transport_capture(const TransportRequest& request, std::vector<cl::DeviceContext>& devices,
                                    cl::ProgramCache& programs);
 

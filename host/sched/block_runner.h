@@ -3,13 +3,12 @@
 // starts with one block; ownership of the others is first-touch: unowned blocks wait in a shared queue and belong to
 // the device that takes them, so a faster device takes more. When a device fails, its blocks lose their state: they go
 // back to the queue and the device that takes one rebuilds it by replaying the earlier steps (BlockTask::step with
-// replay = true), so the result is the same as if the block had never moved.
+// replay = true), so the result is the same as if the block had never moved. A device that hangs (a call past the tile
+// timeout) is dropped the same way.
 #pragma once
 
 #include <cstddef>
-#include <exception>
-#include <functional>
-#include <mutex>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -17,11 +16,15 @@
 #include "host/sched/fault.h"
 #include "host/sched/report.h"
 #include "host/sched/scheduler.h"
+#include "host/sched/watchdog.h"
 #include "host/sched/worker.h"
 
 namespace rfrecon::sched {
 
-// The stage's side. Calls for one block never overlap; calls for different blocks run on several threads.
+// The stage's side. Calls for one block never overlap, except that a call abandoned after the tile timeout may still
+// run when the block's next owner calls create: a call keeps alive what it uses (create makes fresh state, it does
+// not reuse the old), and results leave a call only through Worker::deliver. Calls for different blocks run on
+// several threads.
 class BlockTask {
  public:
   virtual ~BlockTask() = default;
@@ -34,41 +37,31 @@ class BlockTask {
   virtual void step(Worker& worker, std::size_t block, std::size_t step, bool replay) = 0;
 };
 
+struct BlockOptions {
+  std::size_t items_per_row = 1;                         // items of one row in reports (the image width for pixels)
+  FaultPolicy faults = FaultPolicy::from_environment();  // counts block-steps per device
+  // Per call into the task (prepare, create, one step of one block, each replayed step alone); 0: none.
+  double tile_timeout_s = tile_timeout_from_environment();
+};
+
 class BlockRunner {
  public:
-  // items_per_row: items of one row in reports (the image width for pixels). Faults count block-steps per device.
   BlockRunner(std::vector<cl::DeviceContext>& devices, std::vector<Tile> blocks, BlockTask& task,
-              std::size_t items_per_row = 1, FaultPolicy faults = FaultPolicy::from_environment());
+              BlockOptions options = {});
 
-  // Runs step `step` for every block (steps 0, 1, ... in order) and adds it to the report named `stage`.
+  // Runs step `step` for every block (steps 0, 1, ... in order) and adds it to the report named `stage`. A device
+  // whose call runs past the tile timeout is dropped like a failed one (its thread is not waited for; the task's
+  // step must hand its results over through Worker::deliver, as run_tiles' compute does).
   // Throws AllDevicesFailed when no device is left; other exceptions from the task are rethrown.
   void run_step(std::size_t step, const std::string& stage);
 
   // One report per stage name, in first-use order.
-  const std::vector<RunReport>& reports() const { return reports_; }
-  const std::vector<Tile>& blocks() const { return blocks_; }
+  const std::vector<RunReport>& reports() const;
+  const std::vector<Tile>& blocks() const;
 
  private:
-  void work_on(std::size_t position, std::size_t step, RunReport& report);
-  bool next_block(std::size_t position, std::size_t& block, bool& moved);
-  void fail(std::size_t position, const std::string& error, const Tile& rows, RunReport& report);
-  void run_round(const std::function<void(std::size_t)>& body);
-
-  std::vector<cl::DeviceContext>& devices_;
-  std::vector<Worker> workers_;
-  std::vector<Tile> blocks_;
-  BlockTask& task_;
-  std::size_t items_per_row_;
-  FaultPolicy faults_;
-  std::mutex mutex_;
-  std::vector<std::size_t> owner_;    // per block; kUnowned when its state lives nowhere
-  std::vector<bool> claimed_;         // per block: taken (or done) in the current step
-  std::vector<char> created_;         // per block: its state exists on its owner
-  std::vector<bool> failed_;          // per device
-  std::vector<std::size_t> started_;  // block-steps started per device, for faults
-  std::vector<RunReport> reports_;
-  std::exception_ptr error_;
-  bool prepared_ = false;
+  class State;
+  std::shared_ptr<State> state_;  // shared with the device threads: an abandoned one keeps it alive
 };
 
 }  // namespace rfrecon::sched

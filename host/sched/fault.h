@@ -1,5 +1,5 @@
-// Injected device failures for testing failover: "fail device D at its N-th tile", from code or an environment
-// variable.
+// Injected device failures and hangs for testing failover and the tile timeout: "fail (or hang) device D at its
+// N-th tile", from code or an environment variable.
 #pragma once
 
 #include <cstddef>
@@ -11,9 +11,10 @@
 
 namespace rfrecon::sched {
 
-// Read by FaultPolicy::from_environment(): comma-separated DEVICE:TILE terms, DEVICE a position in the command's
-// device list (0-based) or `*` for every device, TILE the 1-based count of tiles that device has started in the
-// stage. "1:3" fails the second device at its third tile; "*:1" fails every device at once.
+// Read by FaultPolicy::from_environment(): comma-separated [hang:]DEVICE:TILE terms, DEVICE a position in the
+// command's device list (0-based) or `*` for every device, TILE the 1-based count of tiles that device has started
+// in the stage. "1:3" fails the second device at its third tile; "*:1" fails every device at once; "hang:1:1" makes
+// the second device's first tile never return (what the tile timeout is for).
 inline constexpr const char* kInjectFaultEnv = "RFRECON_INJECT_FAULT";
 
 // Thrown in place of a device's tile by an injected fault; a cl::ClError (CL_DEVICE_NOT_AVAILABLE), so the scheduler
@@ -26,6 +27,7 @@ class InjectedFault : public cl::ClError {
 class FaultPolicy {
  public:
   struct Term {
+    bool hang = false;  // else fail
     bool every_device = false;
     std::size_t device = 0;
     std::size_t tile = 1;
@@ -40,7 +42,7 @@ class FaultPolicy {
   static FaultPolicy from_environment();
 
   bool empty() const { return terms_.empty(); }
-  // Throws InjectedFault when a term names this device and tile (1-based).
+  // Throws InjectedFault when a fail term names this device and tile (1-based); never returns when a hang term does.
   void check(std::size_t device, std::size_t tile) const;
 
  private:

@@ -47,7 +47,8 @@ void to_json(nlohmann::json& json, const DeviceFailure& failure) {
   json = {{"device", failure.device},
           {"device_name", failure.device_name},
           {"tile", {failure.tile_begin, failure.tile_end}},
-          {"error", failure.error}};
+          {"error", failure.error},
+          {"timed_out", failure.timed_out}};
 }
 
 void to_json(nlohmann::json& json, const RunReport& report) {

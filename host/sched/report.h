@@ -25,7 +25,8 @@ struct DeviceFailure {
   std::string device_name;
   std::size_t tile_begin = 0;  // the tile (item range) it was running; its items went back to the queue
   std::size_t tile_end = 0;
-  std::string error;  // the exception's message
+  std::string error;       // the exception's message, or the timeout's
+  bool timed_out = false;  // dropped after the tile timeout (a hung device), not after an error
 };
 
 struct RunReport {
@@ -43,7 +44,7 @@ struct RunReport {
 
 // {"stage", "items", "seconds", "devices": [{"device", "tiles", "items", "share", "items_per_second",
 // "busy_seconds", "replayed_items", "failed"}], "failures": [{"device", "device_name", "tile": [begin, end],
-// "error"}]}
+// "error", "timed_out"}]}
 void to_json(nlohmann::json& json, const DeviceShare& share);
 void to_json(nlohmann::json& json, const DeviceFailure& failure);
 void to_json(nlohmann::json& json, const RunReport& report);

@@ -1,4 +1,5 @@
-// The shared tile queue, the per-device worker loop (double buffering, throughput-sized tiles) and failover.
+// The shared tile queue, the per-device worker loop (double buffering, throughput-sized tiles), failover and the
+// tile timeout.
 #include "host/sched/scheduler.h"
 
 #include <algorithm>
@@ -7,8 +8,10 @@
 #include <condition_variable>
 #include <deque>
 #include <exception>
+#include <memory>
 #include <mutex>
-#include <thread>
+#include <numeric>
+#include <utility>
 
 #include <spdlog/spdlog.h>
 
@@ -36,36 +39,42 @@ std::string failures_text(const std::string& stage, const std::vector<DeviceFail
   return text;
 }
 
-// Items not yet handed out, plus tiles given back by failed devices (served first).
+// Items not yet handed out, plus tiles given back by failed devices (served first); which device holds which tile.
 class TileQueue {
  public:
-  explicit TileQueue(std::size_t items) : items_(items) {}
+  TileQueue(std::size_t items, std::size_t holders) : items_(items), held_(holders) {}
 
   // Non-blocking: false when nothing is available now.
-  bool try_take(std::size_t size, Tile& tile) {
+  bool try_take(std::size_t holder, std::size_t size, Tile& tile) {
     const std::lock_guard lock(mutex_);
-    return take_locked(size, tile);
+    return take_locked(holder, size, tile);
   }
 
   // Waits for a tile; false when every item is delivered or taken by others and none can come back, or stopped.
-  bool take(std::size_t size, Tile& tile) {
+  bool take(std::size_t holder, std::size_t size, Tile& tile) {
     std::unique_lock lock(mutex_);
     changed_.wait(lock, [&] { return stopped_ || !returned_.empty() || next_ < items_ || in_flight_ == 0; });
-    return !stopped_ && take_locked(size, tile);
+    return !stopped_ && take_locked(holder, size, tile);
   }
 
-  void done(const Tile& tile) {
+  void done(std::size_t holder, const Tile& tile) {
     const std::lock_guard lock(mutex_);
+    auto& held = held_[holder];
+    held.erase(std::find_if(held.begin(), held.end(), [&](const Tile& t) { return t.begin == tile.begin; }));
     --in_flight_;
     delivered_ += tile.size();
     changed_.notify_all();
   }
 
-  void give_back(const Tile& tile) {
+  // Gives back every tile `holder` holds (a failed or hung device) and returns them, the oldest first.
+  std::vector<Tile> give_back(std::size_t holder) {
     const std::lock_guard lock(mutex_);
-    --in_flight_;
-    returned_.push_back(tile);
+    std::vector<Tile> held;
+    held.swap(held_[holder]);
+    in_flight_ -= held.size();
+    returned_.insert(returned_.end(), held.begin(), held.end());
     changed_.notify_all();
+    return held;
   }
 
   void stop() {
@@ -84,7 +93,7 @@ class TileQueue {
   }
 
  private:
-  bool take_locked(std::size_t size, Tile& tile) {
+  bool take_locked(std::size_t holder, std::size_t size, Tile& tile) {
     if (!returned_.empty()) {
       tile = returned_.front();
       returned_.pop_front();
@@ -94,6 +103,7 @@ class TileQueue {
     } else {
       return false;
     }
+    held_[holder].push_back(tile);
     ++in_flight_;
     return true;
   }
@@ -106,28 +116,36 @@ class TileQueue {
   std::size_t delivered_ = 0;
   bool stopped_ = false;
   std::deque<Tile> returned_;
+  std::vector<std::vector<Tile>> held_;  // per device: at most the current tile and the prefetched next one
 };
 
-class TileRun {
+// Shared with the device threads (shared_ptr): a thread abandoned after the tile timeout keeps the run alive, so
+// what it touches later is never freed memory.
+class TileRun : public std::enable_shared_from_this<TileRun> {
  public:
-  TileRun(std::vector<cl::DeviceContext>& devices, std::size_t items, const TileWork& work, const Options& options)
-      : devices_(devices), items_(items), work_(work), options_(options), queue_(items), live_(devices.size()) {
-    report_.stage = options.stage;
+  TileRun(std::vector<cl::DeviceContext>& devices, std::size_t items, TileWork work, Options options)
+      : devices_(devices),
+        items_(items),
+        work_(std::move(work)),
+        options_(std::move(options)),
+        queue_(items, devices.size()),
+        live_(devices.size()),
+        watchdog_(devices, options_.tile_timeout_s) {
+    report_.stage = options_.stage;
     report_.items = items;
     for (auto& device : devices) report_.devices.push_back({cl::describe(device.info())});
   }
 
   RunReport run() {
     const auto start = std::chrono::steady_clock::now();
-    // One device works on the calling thread: no thread start, and runtimes that only run kernels from the thread
-    // that made the context (oclgrind 21.10 crashes otherwise) work.
-    if (devices_.size() == 1) {
-      work_on(0);
-    } else {
-      std::vector<std::thread> threads;
-      for (std::size_t i = 0; i < devices_.size(); ++i) threads.emplace_back([this, i] { work_on(i); });
-      for (auto& thread : threads) thread.join();
-    }
+    std::vector<std::size_t> positions(devices_.size());
+    std::iota(positions.begin(), positions.end(), 0);
+    watchdog_.run(
+        positions, [self = shared_from_this()](std::size_t position) { self->work_on(position); },
+        [this](std::size_t position, double elapsed_s) {
+          drop(position, timeout_error(elapsed_s, options_.tile_timeout_s), true);
+        });
+    const std::lock_guard lock(report_mutex_);
     report_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report_.update_shares();
     if (error_) std::rethrow_exception(error_);
@@ -157,57 +175,66 @@ class TileRun {
 
   void upload(Worker& worker, const Tile& tile, int slot) {
     if (!work_.upload) return;
-    work_.upload(worker, tile, slot);
-    worker.mark_uploaded(slot);
+    watchdog_.call(worker.position(), [&] {
+      work_.upload(worker, tile, slot);
+      worker.mark_uploaded(slot);
+    });
+  }
+
+  // The device's tiles go back to the queue for the others, the failure into the report.
+  void drop(std::size_t position, const std::string& error, bool timed_out) {
+    const std::vector<Tile> held = queue_.give_back(position);
+    const Tile tile = held.empty() ? Tile{} : held.front();
+    const std::lock_guard lock(report_mutex_);
+    DeviceShare& share = report_.devices[position];
+    spdlog::warn("{}: device {} ({}) failed at items [{}, {}), its tiles go to the other devices: {}", options_.stage,
+                 position, share.device, tile.begin, tile.end, error);
+    report_.failures.push_back({position, share.device, tile.begin, tile.end, error, timed_out});
+    share.failed = true;
+    --live_;
   }
 
   void work_on(std::size_t position) {
     DeviceShare& share = report_.devices[position];
-    Tile current;
-    Tile next;
-    bool has_current = false;
-    bool has_next = false;
     try {
-      Worker worker(devices_[position], position);
-      if (work_.prepare) work_.prepare(worker);
+      Worker worker(devices_[position], position, &watchdog_);
+      if (work_.prepare) watchdog_.call(position, [&] { work_.prepare(worker); });
+      Tile current;
+      Tile next;
+      bool has_current = false;
+      bool has_next = false;
       std::size_t started = 0;
       int slot = 0;
       while (true) {
         if (!has_current) {
-          has_current = queue_.take(tile_size(share), current);
+          has_current = queue_.take(position, tile_size(share), current);
           if (!has_current) break;
           upload(worker, current, slot);
         }
         if (work_.upload) {
-          has_next = queue_.try_take(tile_size(share), next);
+          has_next = queue_.try_take(position, tile_size(share), next);
           if (has_next) upload(worker, next, 1 - slot);
         }
-        options_.faults.check(position, ++started);
+        ++started;
         const auto start = std::chrono::steady_clock::now();
-        work_.compute(worker, current, slot);
+        watchdog_.call(position, [&] {
+          options_.faults.check(position, started);
+          work_.compute(worker, current, slot);
+        });
         share.busy_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         ++share.tiles;
         share.items += current.size();
         worker.clear_uploads(slot);
-        queue_.done(current);
+        queue_.done(position, current);
         has_current = has_next;
         current = next;
         has_next = false;
         slot = 1 - slot;
       }
+    } catch (const TileAbandoned&) {
+      // Dropped after the tile timeout: the watchdog has given its tiles away and reported it.
     } catch (const cl::ClError& error) {
-      const Tile failed_tile = has_current ? current : Tile{};
-      spdlog::warn("{}: device {} ({}) failed, its tiles go to the other devices: {}", options_.stage, position,
-                   share.device, error.what());
-      {
-        const std::lock_guard lock(report_mutex_);
-        report_.failures.push_back(
-            {position, share.device, failed_tile.begin, failed_tile.end, std::string(error.what())});
-      }
-      share.failed = true;
-      --live_;
-      if (has_current) queue_.give_back(current);
-      if (has_next) queue_.give_back(next);
+      drop(position, error.what(), false);
     } catch (...) {
       {
         const std::lock_guard lock(report_mutex_);
@@ -219,10 +246,11 @@ class TileRun {
 
   std::vector<cl::DeviceContext>& devices_;
   std::size_t items_;
-  const TileWork& work_;
-  const Options& options_;
+  TileWork work_;
+  Options options_;
   TileQueue queue_;
   std::atomic<std::size_t> live_;
+  Watchdog watchdog_;
   std::mutex report_mutex_;
   RunReport report_;
   std::exception_ptr error_;
@@ -238,13 +266,14 @@ RunReport run_tiles(std::vector<cl::DeviceContext>& devices, std::size_t items, 
                     const Options& options) {
   if (!work.compute) throw std::invalid_argument("run_tiles: TileWork needs a compute function");
   if (devices.empty()) throw AllDevicesFailed(options.stage, {});
-  return TileRun(devices, items, work, options).run();
+  return std::make_shared<TileRun>(devices, items, work, options)->run();
 }
 
 RunReport run_tiles(std::vector<cl::DeviceContext>& devices, std::size_t items, const TileFn& compute,
                     const Options& options) {
   TileWork work;
-  work.compute = [&compute](Worker& worker, const Tile& tile, int) { compute(worker, tile); };
+  // A copy: a thread abandoned after the tile timeout may still run it when the caller's function is gone.
+  work.compute = [compute](Worker& worker, const Tile& tile, int) { compute(worker, tile); };
   return run_tiles(devices, items, work, options);
 }
 

@@ -8,8 +8,8 @@
 //   sched::Options options;
 //   options.stage = "fusion";
 //   sched::RunReport report = sched::run_tiles(devices, rows, [&](sched::Worker& w, const sched::Tile& t) {
-//     // enqueue the kernel for items [t.begin, t.end) on w.queue(), read the results into the host output
-//     // (each item belongs to exactly one tile, so no locking), return when they are on the host
+//     // enqueue the kernel for items [t.begin, t.end) on w.queue(), read the results, copy them into the host
+//     // output with w.deliver (each item belongs to exactly one tile, so no locking), return when they are there
 //   }, options);
 //   sched::log_reports({report});   // table: per device tiles, share, items/s, failures
 //   nlohmann::json j = report;      // same in the JSON summary
@@ -23,8 +23,15 @@
 // Guarantees: every item is computed exactly once in the delivered output (a tile is redone whole when its device
 // failed before delivering), so results never depend on the split when the kernel computes each item alone.
 // A cl::ClError from prepare/upload/compute marks that device failed (logged, recorded in the report) and its
-// tiles go back to the queue; any other exception stops every worker and is rethrown. When every device has
-// failed, AllDevicesFailed (a cl::ClError: exit code 5) lists each device's error.
+// tiles go back to the queue; any other exception stops every worker and is rethrown. A call (prepare, an upload, a
+// tile's compute) running past Options::tile_timeout_s drops its device the same way (DeviceFailure::timed_out):
+// run_tiles returns without waiting for that thread, and its results never reach the output provided compute
+// hands them over through Worker::deliver, as below. When every device has failed or hung, AllDevicesFailed (a
+// cl::ClError: exit code 5) lists each device's error.
+//
+// Delivering results (what makes an abandoned tile harmless): read them into memory of the compute call itself, then
+//   const auto pixels = cl::download<float>(w.queue(), output, t.size());   // blocking; may hang in the driver
+//   w.deliver([&] { std::copy(pixels.begin(), pixels.end(), image.begin() + t.begin); });
 #pragma once
 
 #include <cstddef>
@@ -36,6 +43,7 @@
 #include "host/cl/error.h"
 #include "host/sched/fault.h"
 #include "host/sched/report.h"
+#include "host/sched/watchdog.h"
 #include "host/sched/worker.h"
 
 namespace rfrecon::sched {
@@ -57,6 +65,7 @@ struct Options {
   double target_tile_seconds = 0.05;  // later tiles: measured items/s x this
   std::size_t max_tile_items = 0;     // 0: no cap
   FaultPolicy faults = FaultPolicy::from_environment();
+  double tile_timeout_s = tile_timeout_from_environment();  // per call into the stage; 0: none
 };
 
 using TileFn = std::function<void(Worker&, const Tile&)>;

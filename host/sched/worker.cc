@@ -1,11 +1,12 @@
-// The per-device upload queue and slot events of the scheduler's workers.
+// The per-device upload queue and slot events of the scheduler's workers, and the fenced delivery of results.
 #include "host/sched/worker.h"
 
 #include "host/cl/error.h"
 
 namespace rfrecon::sched {
 
-Worker::Worker(cl::DeviceContext& device, std::size_t position) : device_(device), position_(position) {}
+Worker::Worker(cl::DeviceContext& device, std::size_t position, Watchdog* watchdog)
+    : device_(device), position_(position), watchdog_(watchdog) {}
 
 ::cl::CommandQueue& Worker::transfer_queue() {
   if (transfer_() == nullptr) {
@@ -21,6 +22,14 @@ void Worker::mark_uploaded(int slot) {
   RF_CL_CHECK(transfer_queue().enqueueMarkerWithWaitList(nullptr, &marker));
   RF_CL_CHECK(transfer_queue().flush());
   ready_[slot] = {marker};
+}
+
+void Worker::deliver(const std::function<void()>& copy) {
+  if (watchdog_ != nullptr) {
+    watchdog_->deliver(position_, copy);
+  } else {
+    copy();
+  }
 }
 
 }  // namespace rfrecon::sched

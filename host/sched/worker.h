@@ -1,18 +1,21 @@
-// One device as the scheduler drives it: the device's compute queue, a second queue for uploads, and the events
-// that say when each of its two input buffer sets has arrived (double buffering).
+// One device as the scheduler drives it: the device's compute queue, a second queue for uploads, the events that say
+// when each of its two input buffer sets has arrived (double buffering), and the fenced delivery of results.
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "host/cl/device_context.h"
 #include "host/cl/opencl.h"
+#include "host/sched/watchdog.h"
 
 namespace rfrecon::sched {
 
 class Worker {
  public:
-  Worker(cl::DeviceContext& device, std::size_t position);
+  // watchdog: the one timing this worker's calls (Worker::deliver asks it); none: deliver always copies.
+  Worker(cl::DeviceContext& device, std::size_t position, Watchdog* watchdog = nullptr);
 
   cl::DeviceContext& device() { return device_; }
   // Index of the device in the list given to the scheduler (stable across a run; reports and faults use it).
@@ -28,9 +31,15 @@ class Worker {
   void mark_uploaded(int slot);
   void clear_uploads(int slot) { ready_[slot].clear(); }
 
+  // The only way a tile's results reach the stage's output: read them (blocking) into memory of the calling thread,
+  // then deliver([&] { copy them into the output }). Throws TileAbandoned instead when the scheduler gave the tile
+  // to another device after the tile timeout, so a late thread never writes the output (docs/scheduler.md).
+  void deliver(const std::function<void()>& copy);
+
  private:
   cl::DeviceContext& device_;
   std::size_t position_;
+  Watchdog* watchdog_;
   ::cl::CommandQueue transfer_;
   std::vector<::cl::Event> ready_[2];
 };

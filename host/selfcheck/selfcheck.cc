@@ -1,11 +1,18 @@
 // The self-check inputs, runs and comparison.
 #include "host/selfcheck/selfcheck.h"
 
+#include <stdexcept>
+#include <string>
+
 #include "host/selfcheck/axpy.h"
 
 namespace rfrecon::selfcheck {
 
 std::vector<SelfcheckResult> run_selfcheck(std::vector<cl::DeviceContext>& devices, std::size_t elements) {
+  if (elements == 0 || elements > kMaxSelfcheckElements) {
+    throw std::invalid_argument("run_selfcheck: elements must be in [1, " + std::to_string(kMaxSelfcheckElements) +
+                                "]");
+  }
   std::vector<float> x(elements);
   std::vector<float> y(elements);
   for (std::size_t i = 0; i < elements; ++i) {

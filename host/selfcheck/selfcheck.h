@@ -18,7 +18,10 @@ struct SelfcheckResult {
   std::size_t mismatches = 0;  // elements that differ from the C++ reference (bit for bit)
 };
 
-// Runs axpy over `elements` values with each entry on each device, in that order.
+inline constexpr std::size_t kMaxSelfcheckElements = std::size_t{1} << 26;  // 64 M: 768 MiB of buffers
+
+// Runs axpy over `elements` values (at most kMaxSelfcheckElements) with each entry on each device, in that order.
+
 std::vector<SelfcheckResult> run_selfcheck(std::vector<cl::DeviceContext>& devices, std::size_t elements);
 
 }  // namespace rfrecon::selfcheck

@@ -11,7 +11,7 @@ namespace rfrecon::transport {
 CaptureViews view_capture(const std::filesystem::path& capture_dir, const CaptureSource& source,
                           std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
   CaptureViews views;
-  const auto manifest = open_capture(capture_dir, source.layout, source.projector_size);
+  const auto manifest = open_capture(capture_dir, source.layout, source.projector_size, source.frame_paths);
   TransportSetup setup;
   setup.entries_per_pixel = 8;
   // The board's dark squares (albedo about 0.05) read below the default black threshold and would count as shadow:

@@ -8,6 +8,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "host/capture/manifest.h"
 #include "host/cl/device_context.h"
 #include "host/cl/program_cache.h"
 #include "host/sched/report.h"
@@ -19,6 +20,7 @@ namespace rfrecon::transport {
 struct CaptureSource {
   std::string layout;       // "" or "manifest" (manifest.json), or "opencv-graycode"
   cv::Size projector_size;  // needed for opencv-graycode
+  capture::FramePaths frame_paths = capture::FramePaths::kInsideCapture;  // kAnywhere: --allow-outside-frames
 };
 
 struct CaptureViews {

@@ -18,8 +18,9 @@ namespace rfrecon::transport {
 namespace fs = std::filesystem;
 using capture::PatternKind;
 
-capture::CaptureManifest open_capture(const fs::path& capture_dir, const std::string& layout, cv::Size projector_size) {
-  if (layout.empty() || layout == "manifest") return capture::read_manifest(capture_dir);
+capture::CaptureManifest open_capture(const fs::path& capture_dir, const std::string& layout, cv::Size projector_size,
+                                      capture::FramePaths frame_paths) {
+  if (layout.empty() || layout == "manifest") return capture::read_manifest(capture_dir, frame_paths);
   if (layout != "opencv-graycode") {
     throw InputError("unknown capture layout '" + layout + "' (expected 'manifest' or 'opencv-graycode')");
   }
@@ -197,11 +198,13 @@ class TransportBlocks final : public sched::BlockTask {
     accumulators_[block] = make_device_accumulator(setup, worker.device(), programs_, entry_);
   }
 
-  void step(sched::Worker&, std::size_t block, std::size_t index, bool replay) override {
+  void step(sched::Worker& worker, std::size_t block, std::size_t index, bool replay) override {
     const Step& step = steps_[index];
-    auto& accumulator = *accumulators_[block];
+    // Held by the call: after a timeout the block's next owner replaces it while this call may still run.
+    const std::shared_ptr<TransportAccumulator> accumulator = accumulators_[block];
     if (step.kind == Step::Kind::kFinish) {
-      results_[block] = accumulator.finish();
+      CompressedTransport result = accumulator->finish();
+      worker.deliver([&] { results_[block] = std::move(result); });
       return;
     }
     std::vector<cv::Mat> frames;
@@ -209,7 +212,7 @@ class TransportBlocks final : public sched::BlockTask {
       frames.push_back(
           rows(replay ? capture::load_frame(capture_dir_, capture_.manifest, step.frames[i]) : frames_[i], block));
     }
-    apply(accumulator, step, frames, rows(capture_.white, block), rows(capture_.black, block));
+    apply(*accumulator, step, frames, rows(capture_.white, block), rows(capture_.black, block));
   }
 
   // The blocks' transports stacked into the whole camera image.
@@ -244,7 +247,7 @@ class TransportBlocks final : public sched::BlockTask {
   cl::ProgramCache& programs_;
   KernelEntry entry_;
   std::vector<cv::Mat> frames_;  // the current step's frames
-  std::vector<std::unique_ptr<TransportAccumulator>> accumulators_;
+  std::vector<std::shared_ptr<TransportAccumulator>> accumulators_;
   std::vector<CompressedTransport> results_;
 };
 
@@ -296,7 +299,7 @@ TransportRun compute_transport_on_devices(const fs::path& capture_dir, capture::
   const std::vector<sched::Tile> blocks =
       sched::split_rows(rows, devices.size() == 1 ? 1 : kBlocksPerDevice * devices.size());
   TransportBlocks task(capture_dir, capture, steps, blocks, programs, entry);
-  sched::BlockRunner runner(devices, blocks, task, static_cast<std::size_t>(capture.setup.camera_size.width));
+  sched::BlockRunner runner(devices, blocks, task, {static_cast<std::size_t>(capture.setup.camera_size.width)});
 
   // Frames of step i + 1 are read on another thread while the devices work on step i.
   const auto read_step = [&](std::size_t i) {

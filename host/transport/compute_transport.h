@@ -18,7 +18,8 @@ namespace rfrecon::transport {
 // files sorted by name as OpenCV GrayCodePattern's sequence for `projector_size`
 // (capture::manifest_from_opencv_layout). Throws InputError on an unknown layout or a missing projector size.
 capture::CaptureManifest open_capture(const std::filesystem::path& capture_dir, const std::string& layout,
-                                      cv::Size projector_size);
+                                      cv::Size projector_size,
+                                      capture::FramePaths frame_paths = capture::FramePaths::kInsideCapture);
 
 struct TransportRun {
   CompressedTransport transport;

@@ -39,7 +39,7 @@ void prepare(sched::Worker& worker, DeviceState& state, cl::ProgramCache& progra
   state.light = cl::upload(worker.device().context(), light);
 }
 
-// Sets the arguments, runs the kernel after the slot's uploads, and reads the tile's pixels into `image`.
+// Sets the arguments, runs the kernel after the slot's uploads, reads the tile's pixels and delivers them to `image`.
 template <typename... Args>
 void run_tile(sched::Worker& worker, DeviceState& state, cl::KernelEntry entry, const sched::Tile& tile, int slot,
               std::vector<float>& image, const Args&... args) {
@@ -50,7 +50,9 @@ void run_tile(sched::Worker& worker, DeviceState& state, cl::KernelEntry entry, 
   // would otherwise make PoCL compile the kernel again for every work-group size it picks.
   const std::size_t group = std::min<std::size_t>(kWorkGroup, worker.device().info().max_work_group_size);
   cl::enqueue_kernel(worker.queue(), state.kernel, entry, tile.size(), {group, &worker.inputs_ready(slot)});
-  cl::read_buffer(worker.queue(), output, image.data() + tile.begin, tile.size());
+  const auto pixels = cl::download<float>(worker.queue(), output, tile.size());
+  worker.deliver(
+      [&] { std::copy(pixels.begin(), pixels.end(), image.begin() + static_cast<std::ptrdiff_t>(tile.begin)); });
 }
 
 ProductRun run_product(std::vector<cl::DeviceContext>& devices, std::size_t pixels, sched::Options& options,

@@ -1,8 +1,18 @@
-// HDF5 reading and writing of the compressed light transport (H5Cpp).
+// HDF5 reading and writing of the compressed light transport (H5Cpp): every call guarded, every value checked.
 #include "host/transport/transport_file.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
 #include <string>
+#include <string_view>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <H5Cpp.h>
@@ -17,12 +27,22 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kFormat = "rfrecon-transport";
+constexpr int kFirstChecksummedVersion = 2;
+constexpr hsize_t kMaxStringBytes = 256;    // longest string attribute
+constexpr hsize_t kMaxElementBytes = 8;     // largest integer or float element
+constexpr hsize_t kMaxDeflateRatio = 1032;  // zlib's largest compression ratio
+constexpr hsize_t kRowsPerChunk = 32;       // bands of camera rows: compress well, read row by row
+constexpr std::size_t kMemoryIncrementBytes = std::size_t{1} << 20;
 
 template <typename T>
 const H5::PredType& h5_type();
 template <>
 const H5::PredType& h5_type<std::int32_t>() {
   return H5::PredType::NATIVE_INT32;
+}
+template <>
+const H5::PredType& h5_type<std::int64_t>() {
+  return H5::PredType::NATIVE_INT64;
 }
 template <>
 const H5::PredType& h5_type<std::uint32_t>() {
@@ -41,6 +61,35 @@ const H5::PredType& h5_type<double>() {
   return H5::PredType::NATIVE_DOUBLE;
 }
 
+// The type class a file's values need to be read as T (HDF5 converts sizes and byte orders within a class).
+template <typename T>
+constexpr H5T_class_t kClassOf = std::is_floating_point_v<T> ? H5T_FLOAT : H5T_INTEGER;
+
+std::string class_name(H5T_class_t type_class) {
+  switch (type_class) {
+    case H5T_INTEGER:
+      return "integer";
+    case H5T_FLOAT:
+      return "float";
+    case H5T_STRING:
+      return "string";
+    default:
+      return "of type class " + std::to_string(static_cast<int>(type_class));
+  }
+}
+
+std::string describe(const std::vector<hsize_t>& shape) {
+  std::string text = "(";
+  for (std::size_t i = 0; i < shape.size(); ++i) text += (i > 0 ? ", " : "") + std::to_string(shape[i]);
+  return text + ")";
+}
+
+hsize_t element_count(const std::vector<hsize_t>& shape) {
+  hsize_t count = 1;
+  for (const hsize_t extent : shape) count *= extent;
+  return count;
+}
+
 // Shape (height, width[, depth]) of a per-camera-pixel dataset.
 std::vector<hsize_t> pixel_shape(const TransportSetup& setup, hsize_t depth) {
   std::vector<hsize_t> shape{static_cast<hsize_t>(setup.camera_size.height),
@@ -49,16 +98,49 @@ std::vector<hsize_t> pixel_shape(const TransportSetup& setup, hsize_t depth) {
   return shape;
 }
 
+// The shapes of the datasets: indices and weights, correspondence and decoded, flags and direct_energy.
+struct Shapes {
+  explicit Shapes(const TransportSetup& setup)
+      : entries(pixel_shape(setup, static_cast<hsize_t>(setup.entries_per_pixel))),
+        pairs(pixel_shape(setup, 2)),
+        pixels(pixel_shape(setup, 0)) {}
+  std::vector<hsize_t> entries;  // (H, W, K)
+  std::vector<hsize_t> pairs;    // (H, W, 2)
+  std::vector<hsize_t> pixels;   // (H, W)
+};
+
+bool has_checksum(const H5::DSetCreatPropList& properties) {
+  for (int i = 0; i < properties.getNfilters(); ++i) {
+    unsigned flags = 0;
+    unsigned config = 0;
+    std::size_t value_count = 0;
+    if (properties.getFilter(i, flags, value_count, nullptr, 0, nullptr, config) == H5Z_FILTER_FLETCHER32) return true;
+  }
+  return false;
+}
+
+// Flag combinations the accumulators produce (kernels/transport/flags.h): valid only without shadow, low contrast
+// or out of range; no signal only for compressible pixels.
+bool allowed_flags(std::uint8_t flags) {
+  constexpr unsigned kAll = kFlagValid | kFlagShadow | kFlagLowContrast | kFlagOutOfRange | kFlagNoSignal;
+  return (flags & ~kAll) == 0 &&
+         ((flags & kFlagValid) == 0 || (flags & (kFlagShadow | kFlagLowContrast | kFlagOutOfRange)) == 0) &&
+         ((flags & kFlagNoSignal) == 0 || compressible(flags));
+}
+
 template <typename T>
 void write_dataset(H5::H5File& file, const char* name, const std::vector<hsize_t>& shape, const std::vector<T>& data) {
+  if (data.size() != element_count(shape)) {
+    throw std::logic_error(std::string("write_transport: '") + name + "' holds " + std::to_string(data.size()) +
+                           " values, its shape " + describe(shape) + " needs " + std::to_string(element_count(shape)));
+  }
   H5::DataSpace space(static_cast<int>(shape.size()), shape.data());
   H5::DSetCreatPropList properties;
-  if (!data.empty()) {
-    std::vector<hsize_t> chunk = shape;
-    chunk[0] = std::min<hsize_t>(shape[0], 32);  // bands of rows: compresses well, reads row by row
-    properties.setChunk(static_cast<int>(chunk.size()), chunk.data());
-    properties.setDeflate(1);
-  }
+  std::vector<hsize_t> chunk = shape;
+  chunk[0] = std::min(shape[0], kRowsPerChunk);
+  properties.setChunk(static_cast<int>(chunk.size()), chunk.data());
+  properties.setDeflate(1);
+  properties.setFletcher32();  // after deflate: checks the stored bytes before they are inflated
   H5::DataSet dataset = file.createDataSet(name, h5_type<T>(), space, properties);
   dataset.write(data.data(), h5_type<T>());
 }
@@ -75,85 +157,341 @@ void write_attribute(H5::H5File& file, const char* name, const std::string& valu
   attribute.write(type, value);
 }
 
-// Reading, with every failure turned into an InputError naming the file and the object.
+// An HDF5 file built in memory (core driver) whose bytes, as the closing file leaves them, are kept here: the driver
+// hands its buffer to release() instead of freeing it.
+class MemoryFile {
+ public:
+  MemoryFile(const MemoryFile&) = delete;  // the driver's callbacks point to it
+  MemoryFile& operator=(const MemoryFile&) = delete;
+  MemoryFile() {
+    access_.setCore(kMemoryIncrementBytes, false);
+    access_.setLibverBounds(H5F_LIBVER_V18, H5F_LIBVER_V18);  // checksummed metadata, readable by HDF5 1.8 and later
+    H5FD_file_image_callbacks_t callbacks{&allocate, &copy, &resize, &release, &share, &unshare, this};
+    if (H5Pset_file_image_callbacks(access_.getId(), &callbacks) < 0) {
+      throw H5::PropListIException("H5Pset_file_image_callbacks", "cannot keep the file in memory");
+    }
+  }
+
+  // Creates the file; `name` (a path that does not exist) only names it: nothing is written there.
+  H5::H5File create(const fs::path& name) const {
+    return H5::H5File(name.string(), H5F_ACC_TRUNC, H5::FileCreatPropList::DEFAULT, access_);
+  }
+
+  // The closed file's bytes, up to the end-of-file address of its superblock (version 2, 8-byte addresses: at byte
+  // 28; the buffer itself is a multiple of kMemoryIncrementBytes).
+  std::string_view bytes() const {
+    constexpr std::string_view kSignature("\211HDF\r\n\032\n", 8);
+    constexpr std::size_t kEofOffset = 28;
+    std::uint64_t eof = 0;
+    const char* image = kept_.get();
+    if (kept_size_ < kEofOffset + sizeof eof || std::string_view(image, 8) != kSignature || image[8] != 2 ||
+        image[9] != static_cast<char>(sizeof eof)) {
+      throw H5::FileIException("MemoryFile::bytes", "the closed file does not start with a version 2 superblock");
+    }
+    std::memcpy(&eof, image + kEofOffset, sizeof eof);  // little-endian, as the format
+    if (eof > kept_size_) throw H5::FileIException("MemoryFile::bytes", "superblock end of file beyond the image");
+    return {image, static_cast<std::size_t>(eof)};
+  }
+
+ private:
+  static void* allocate(std::size_t size, H5FD_file_image_op_t /*op*/, void* self) {
+    static_cast<MemoryFile*>(self)->size_ = size;
+    return std::malloc(size);
+  }
+  static void* copy(void* to, const void* from, std::size_t size, H5FD_file_image_op_t /*op*/, void* /*self*/) {
+    return std::memcpy(to, from, size);
+  }
+  static void* resize(void* memory, std::size_t size, H5FD_file_image_op_t /*op*/, void* self) {
+    static_cast<MemoryFile*>(self)->size_ = size;
+    return std::realloc(memory, size);
+  }
+  static herr_t release(void* memory, H5FD_file_image_op_t op, void* self) {
+    if (op != H5FD_FILE_IMAGE_OP_FILE_CLOSE) {
+      std::free(memory);
+      return 0;
+    }
+    auto* file = static_cast<MemoryFile*>(self);
+    file->kept_.reset(static_cast<char*>(memory));
+    file->kept_size_ = file->size_;
+    return 0;
+  }
+  static void* share(void* self) { return self; }  // the property list's copies all point to this object
+  static herr_t unshare(void* /*self*/) { return 0; }
+
+  H5::FileAccPropList access_;
+  std::size_t size_ = 0;  // of the buffer the driver holds
+  std::unique_ptr<char, decltype(&std::free)> kept_{nullptr, &std::free};
+  std::size_t kept_size_ = 0;
+};
+
+// While it lives, HDF5 hands the error stack of each failing call to this object instead of printing it: the reader
+// quotes the innermost error and recognises checksum failures.
+class Hdf5Errors {
+ public:
+  Hdf5Errors() {
+    H5Eget_auto2(H5E_DEFAULT, &saved_handler_, &saved_data_);
+    H5Eset_auto2(H5E_DEFAULT, &Hdf5Errors::record, this);
+  }
+  ~Hdf5Errors() { H5Eset_auto2(H5E_DEFAULT, saved_handler_, saved_data_); }
+  Hdf5Errors(const Hdf5Errors&) = delete;
+  Hdf5Errors& operator=(const Hdf5Errors&) = delete;
+
+  // The descriptions of the last failure, from the API call down to where HDF5 detected it; forgets them.
+  std::vector<std::string> take() { return std::exchange(last_, {}); }
+  void clear() { last_.clear(); }
+
+ private:
+  static herr_t record(hid_t stack, void* self) noexcept {
+    auto& last = static_cast<Hdf5Errors*>(self)->last_;
+    last.clear();
+    H5Ewalk2(stack, H5E_WALK_DOWNWARD, &Hdf5Errors::add, &last);
+    return 0;
+  }
+  static herr_t add(unsigned /*depth*/, const H5E_error2_t* error, void* last) noexcept {
+    try {
+      static_cast<std::vector<std::string>*>(last)->emplace_back(error->desc != nullptr ? error->desc : "");
+    } catch (const std::bad_alloc&) {
+      return -1;  // stops the walk: the descriptions are a courtesy
+    }
+    return 0;
+  }
+
+  H5E_auto2_t saved_handler_ = nullptr;
+  void* saved_data_ = nullptr;
+  std::vector<std::string> last_;
+};
+
+// Reading: every HDF5 call inside guarded(), every failure an InputError naming the file and the object.
 class Reader {
  public:
-  explicit Reader(const fs::path& path) : path_(path) {
-    if (!fs::is_regular_file(path)) fail("file not found");
-    try {
-      file_ = H5::H5File(path.string(), H5F_ACC_RDONLY);
-    } catch (const H5::Exception&) {
-      fail("not a readable HDF5 file (truncated or corrupt?)");
-    }
+  explicit Reader(fs::path path) : path_(std::move(path)) {
+    std::error_code error;
+    if (!fs::is_regular_file(path_, error)) fail("file not found");
+    guarded("the HDF5 file", [&] { file_ = H5::H5File(path_.string(), H5F_ACC_RDONLY); });
   }
 
   [[noreturn]] void fail(const std::string& what) const { throw InputError(path_.string() + ": " + what); }
 
-  template <typename T>
-  T attribute(const char* name) {
-    if (!file_.attrExists(name)) fail(std::string("missing attribute '") + name + "'");
-    T value{};
+  // Runs `step`, HDF5 calls about `object`, turning every exception but our own InputErrors into one.
+  template <typename Step>
+  auto guarded(const std::string& object, Step&& step) -> decltype(step()) {
+    errors_.clear();
     try {
-      file_.openAttribute(name).read(h5_type<T>(), &value);
-    } catch (const H5::Exception&) {
-      fail(std::string("attribute '") + name + "' is unreadable or not numeric");
+      return step();
+    } catch (const InputError&) {
+      throw;
+    } catch (const H5::Exception& error) {
+      fail_reading(object, error.getDetailMsg());
+    } catch (const std::exception& error) {
+      fail_reading(object, error.what());
     }
+  }
+
+  // format_version, which says whether the datasets carry checksums.
+  void read_version() {
+    const auto version = number<std::int64_t>("format_version");
+    if (version < 1 || version > kTransportFileVersion) {
+      fail("format_version " + std::to_string(version) + " is not supported (this build reads 1 to " +
+           std::to_string(kTransportFileVersion) + ")");
+    }
+    checksums_ = version >= kFirstChecksummedVersion;
+  }
+
+  // An integer attribute in [min, max].
+  int integer(const char* name, int min, int max) {
+    const auto value = number<std::int64_t>(name);
+    if (value < min || value > max) {
+      fail(std::string("attribute '") + name + "' is " + std::to_string(value) + ", outside [" + std::to_string(min) +
+           ", " + std::to_string(max) + "]");
+    }
+    return static_cast<int>(value);
+  }
+
+  double finite(const char* name) {
+    const auto value = number<double>(name);
+    if (!std::isfinite(value)) fail(std::string("attribute '") + name + "' is " + text(value) + ", not finite");
     return value;
   }
 
-  std::string string_attribute(const char* name) {
-    if (!file_.attrExists(name)) fail(std::string("missing attribute '") + name + "'");
-    try {
-      H5::Attribute attribute = file_.openAttribute(name);
+  std::string string(const char* name) {
+    return guarded(std::string("attribute '") + name + "'", [&] {
+      const H5::Attribute attribute = single_value(name, H5T_STRING);
+      const H5::StrType type = attribute.getStrType();
+      if (!type.isVariableStr() && type.getSize() > kMaxStringBytes) {
+        fail(std::string("attribute '") + name + "' is a string of " + std::to_string(type.getSize()) +
+             " bytes, more than " + std::to_string(kMaxStringBytes));
+      }
       std::string value;
-      attribute.read(attribute.getStrType(), value);
+      attribute.read(type, value);
       return value.substr(0, value.find('\0'));  // drop any NUL padding
-    } catch (const H5::Exception&) {
-      fail(std::string("attribute '") + name + "' is unreadable or not a string");
+    });
+  }
+
+  // Dataset `name`, which must have `shape`, read as T. Its type, shape, chunks and stored size are checked before
+  // anything is allocated: a file cannot claim more data than it holds (deflate compresses at most 1032:1).
+  template <typename T>
+  std::vector<T> dataset(const char* name, const std::vector<hsize_t>& shape) {
+    const std::string label = std::string("dataset '") + name + "'";
+    return guarded(label, [&] {
+      if (!file_.nameExists(name)) fail("missing " + label);
+      const H5::DataSet dataset = file_.openDataSet(name);
+      const H5::DataType type = dataset.getDataType();
+      check_type(label, type, kClassOf<T>);
+      const H5::DataSpace space = dataset.getSpace();
+      std::vector<hsize_t> extent(static_cast<std::size_t>(space.getSimpleExtentNdims()));
+      space.getSimpleExtentDims(extent.data());
+      if (extent != shape) {
+        fail(label + " has shape " + describe(extent) + ", the attributes require " + describe(shape));
+      }
+      const H5::DSetCreatPropList properties = dataset.getCreatePlist();
+      if (properties.getLayout() == H5D_CHUNKED) {
+        std::vector<hsize_t> chunk(shape.size());
+        properties.getChunk(static_cast<int>(chunk.size()), chunk.data());
+        if (!std::equal(chunk.begin(), chunk.end(), shape.begin(), std::less_equal<>())) {
+          fail(label + " has chunks " + describe(chunk) + " larger than its shape " + describe(shape));
+        }
+      }
+      if (checksums_ && !has_checksum(properties)) fail(label + " has no checksum, which format_version 2 requires");
+      const hsize_t bytes = element_count(shape) * type.getSize();
+      const hsize_t stored_bytes = dataset.getStorageSize();
+      if (stored_bytes * kMaxDeflateRatio < bytes) {
+        fail(label + " stores " + std::to_string(stored_bytes) + " bytes, too few for its " + std::to_string(bytes) +
+             " (truncated or corrupt file?)");
+      }
+      std::vector<T> values(element_count(shape));
+      dataset.read(values.data(), h5_type<T>());
+      return values;
+    });
+  }
+
+  // Fails at the first element of dataset `name` for which valid(i) is false, naming its index and value.
+  template <typename T, typename Valid>
+  void check(const char* name, const std::vector<hsize_t>& shape, const std::vector<T>& values, Valid&& valid,
+             const std::string& rule) const {
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      if (valid(i)) continue;
+      std::vector<hsize_t> index(shape.size());
+      hsize_t rest = i;
+      for (std::size_t d = shape.size(); d-- > 0;) {
+        index[d] = rest % shape[d];
+        rest /= shape[d];
+      }
+      fail(std::string("dataset '") + name + "' element " + describe(index) + " is " + text(values[i]) + ": " + rule);
     }
   }
 
-  template <typename T>
-  std::vector<T> dataset(const char* name, const std::vector<hsize_t>& expected_shape) {
-    if (!file_.nameExists(name)) fail(std::string("missing dataset '") + name + "'");
-    try {
-      H5::DataSet dataset = file_.openDataSet(name);
-      const H5::DataSpace space = dataset.getSpace();
-      std::vector<hsize_t> shape(static_cast<std::size_t>(space.getSimpleExtentNdims()));
-      space.getSimpleExtentDims(shape.data());
-      if (shape != expected_shape) {
-        fail(std::string("dataset '") + name + "' has shape " + describe(shape) + ", the attributes require " +
-             describe(expected_shape));
-      }
-      hsize_t count = 1;
-      for (const hsize_t extent : shape) count *= extent;
-      std::vector<T> data(count);
-      dataset.read(data.data(), h5_type<T>());
-      return data;
-    } catch (const H5::Exception&) {
-      fail(std::string("dataset '") + name + "' is unreadable (truncated or corrupt file?)");
-    }
+  void close() {
+    guarded("the HDF5 file", [&] { file_.close(); });
   }
 
  private:
-  static std::string describe(const std::vector<hsize_t>& shape) {
-    std::string text = "(";
-    for (std::size_t i = 0; i < shape.size(); ++i) text += (i > 0 ? ", " : "") + std::to_string(shape[i]);
-    return text + ")";
+  template <typename T>
+  static std::string text(T value) {
+    std::ostringstream out;
+    out << +value;  // uint8 as a number
+    return out.str();
+  }
+
+  void check_type(const std::string& label, const H5::DataType& type, H5T_class_t type_class) const {
+    if (type.getClass() != type_class) {
+      fail(label + " is " + class_name(type.getClass()) + ", expected " + class_name(type_class));
+    }
+    if (type_class != H5T_STRING && type.getSize() > kMaxElementBytes) {
+      fail(label + " has " + std::to_string(type.getSize()) + "-byte values");
+    }
+  }
+
+  // Attribute `name`: one value (scalar, or one element) of `type_class`.
+  H5::Attribute single_value(const char* name, H5T_class_t type_class) {
+    const std::string label = std::string("attribute '") + name + "'";
+    if (!file_.attrExists(name)) fail("missing " + label);
+    H5::Attribute attribute = file_.openAttribute(name);
+    check_type(label, attribute.getDataType(), type_class);
+    const H5::DataSpace space = attribute.getSpace();
+    if (space.getSimpleExtentNpoints() != 1 || space.getSimpleExtentNdims() > 1) fail(label + " is not one value");
+    return attribute;
+  }
+
+  template <typename T>
+  T number(const char* name) {
+    return guarded(std::string("attribute '") + name + "'", [&] {
+      T value{};
+      single_value(name, kClassOf<T>).read(h5_type<T>(), &value);
+      return value;
+    });
+  }
+
+  [[noreturn]] void fail_reading(const std::string& object, const std::string& detail) {
+    const std::vector<std::string> stack = errors_.take();
+    if (std::any_of(stack.begin(), stack.end(),
+                    [](const std::string& error) { return error.find("checksum") != std::string::npos; })) {
+      fail(object + " fails its checksum (the file is corrupt)");
+    }
+    fail(object + " is unreadable (truncated or corrupt file?): HDF5: " + (stack.empty() ? detail : stack.back()));
   }
 
   fs::path path_;
+  Hdf5Errors errors_;
   H5::H5File file_;
+  bool checksums_ = false;
 };
+
+// The value rules of docs/formats.md, in the order of the datasets; decoded is (H, W, 2).
+void check_values(const Reader& reader, const CompressedTransport& transport, const std::vector<std::uint32_t>& decoded,
+                  const Shapes& shapes) {
+  const auto projector_pixels = static_cast<std::int64_t>(transport.projector_pixels());
+  const auto& indices = transport.indices;
+  const auto& weights = transport.weights;
+  const auto& correspondence = transport.correspondence;
+  const auto& flags = transport.flags;
+  const auto& energy = transport.direct_energy;
+  const cv::Size projector = transport.setup.projector_size;
+  // The extent of coordinate i of a (H, W, 2) dataset: projector width for x, height for y.
+  const auto axis_extent = [&](std::size_t i) { return i % 2 == 0 ? projector.width : projector.height; };
+  reader.check(
+      "indices", shapes.entries, indices,
+      [&](std::size_t i) { return indices[i] >= -1 && indices[i] < projector_pixels; },
+      "must be -1 (empty slot) or a projector pixel in [0, " + std::to_string(projector_pixels) + ")");
+  reader.check(
+      "weights", shapes.entries, weights,
+      [&](std::size_t i) {
+        return std::isfinite(weights[i]) && weights[i] >= 0.0f && (indices[i] >= 0 || weights[i] == 0.0f);
+      },
+      "must be finite and >= 0, and 0 in empty slots (index -1)");
+  reader.check(
+      "correspondence", shapes.pairs, correspondence,
+      [&](std::size_t i) {
+        const float value = correspondence[i];
+        const bool other_nan = std::isnan(correspondence[i ^ 1]);
+        return std::isnan(value) ? other_nan
+                                 : !other_nan && value >= -1.0f && value <= static_cast<float>(axis_extent(i));
+      },
+      "(x, y) must both be NaN or lie within 1 px of the projector image, [-1, " + std::to_string(projector.width) +
+          "] x [-1, " + std::to_string(projector.height) + "]");
+  reader.check(
+      "flags", shapes.pixels, flags, [&](std::size_t i) { return allowed_flags(flags[i]); },
+      "not a combination of the flag bits that docs/formats.md allows");
+  reader.check(
+      "decoded", shapes.pairs, decoded,
+      [&](std::size_t i) {
+        return (flags[i / 2] & kFlagValid) == 0 || decoded[i] < static_cast<std::uint32_t>(axis_extent(i));
+      },
+      "the pixel's flags say valid, so its decoded coordinate must lie inside the projector");
+  reader.check(
+      "direct_energy", shapes.pixels, energy,
+      [&](std::size_t i) { return std::isfinite(energy[i]) && energy[i] >= 0.0f; }, "must be finite and >= 0");
+}
 
 }  // namespace
 
 void write_transport(const CompressedTransport& transport, const fs::path& file) {
   const TransportSetup& setup = transport.setup;
-  AtomicFile output(file);
+  H5::Exception::dontPrint();
   try {
-    H5::Exception::dontPrint();
-    H5::H5File h5(output.temp_path().string(), H5F_ACC_TRUNC);
+    AtomicFile output(file);
+    // Built in memory, so that HDF5 never meets a full disk, then written by plain file I/O, whole or not at all.
+    MemoryFile memory;
+    H5::H5File h5 = memory.create(output.temp_path());
     write_attribute(h5, "format", std::string(kFormat));
     write_attribute(h5, "format_version", std::int32_t{kTransportFileVersion});
     write_attribute(h5, "software_version", std::string("rfrecon ") + RFRECON_VERSION);
@@ -167,62 +505,65 @@ void write_transport(const CompressedTransport& transport, const fs::path& file)
     write_attribute(h5, "black_threshold", double{setup.thresholds.black});
     write_attribute(h5, "white_threshold", double{setup.thresholds.white});
     write_attribute(h5, "noise_threshold", double{setup.thresholds.noise});
-    const auto k = static_cast<hsize_t>(setup.entries_per_pixel);
-    write_dataset(h5, "indices", pixel_shape(setup, k), transport.indices);
-    write_dataset(h5, "weights", pixel_shape(setup, k), transport.weights);
-    write_dataset(h5, "correspondence", pixel_shape(setup, 2), transport.correspondence);
+    const Shapes shapes(setup);
+    write_dataset(h5, "indices", shapes.entries, transport.indices);
+    write_dataset(h5, "weights", shapes.entries, transport.weights);
+    write_dataset(h5, "correspondence", shapes.pairs, transport.correspondence);
     std::vector<std::uint32_t> decoded(2 * transport.camera_pixels());
     for (std::size_t c = 0; c < transport.camera_pixels(); ++c) {
       decoded[2 * c] = transport.gray_x[c];
       decoded[2 * c + 1] = transport.gray_y[c];
     }
-    write_dataset(h5, "decoded", pixel_shape(setup, 2), decoded);
-    write_dataset(h5, "flags", pixel_shape(setup, 0), transport.flags);
-    write_dataset(h5, "direct_energy", pixel_shape(setup, 0), transport.direct_energy);
+    write_dataset(h5, "decoded", shapes.pairs, decoded);
+    write_dataset(h5, "flags", shapes.pixels, transport.flags);
+    write_dataset(h5, "direct_energy", shapes.pixels, transport.direct_energy);
     h5.close();
+    output.write(memory.bytes());
+    output.commit();
   } catch (const H5::Exception& error) {
-    throw InputError("cannot write " + file.string() + ": " + error.getDetailMsg());
+    throw OutputError("cannot write " + file.string() + ": HDF5: " + error.getDetailMsg());
   }
-  output.commit();
 }
 
 CompressedTransport read_transport(const fs::path& file) {
   H5::Exception::dontPrint();
   Reader reader(file);
-  if (reader.string_attribute("format") != kFormat) reader.fail("not an rfrecon transport file (attribute 'format')");
-  const auto version = reader.attribute<std::int32_t>("format_version");
-  if (version != kTransportFileVersion) {
-    reader.fail("format_version " + std::to_string(version) + " is not supported (expected " +
-                std::to_string(kTransportFileVersion) + ")");
-  }
+  if (reader.string("format") != kFormat) reader.fail("not an rfrecon transport file (attribute 'format')");
+  reader.read_version();
   TransportSetup setup;
-  setup.camera_size = {reader.attribute<std::int32_t>("camera_width"), reader.attribute<std::int32_t>("camera_height")};
-  setup.projector_size = {reader.attribute<std::int32_t>("projector_width"),
-                          reader.attribute<std::int32_t>("projector_height")};
-  setup.entries_per_pixel = reader.attribute<std::int32_t>("entries_per_pixel");
-  setup.dot_spacing = reader.attribute<std::int32_t>("dot_spacing");
-  setup.thresholds.black = static_cast<float>(reader.attribute<double>("black_threshold"));
-  setup.thresholds.white = static_cast<float>(reader.attribute<double>("white_threshold"));
-  setup.thresholds.noise = static_cast<float>(reader.attribute<double>("noise_threshold"));
-  if (setup.camera_size.width < 1 || setup.camera_size.height < 1 || setup.projector_size.width < 1 ||
-      setup.projector_size.height < 1 || setup.entries_per_pixel < 1 || setup.dot_spacing < 0) {
-    reader.fail("sizes, entries_per_pixel or dot_spacing out of range");
+  setup.camera_size = {reader.integer("camera_width", 1, kMaxTransportImageSide),
+                       reader.integer("camera_height", 1, kMaxTransportImageSide)};
+  setup.projector_size = {reader.integer("projector_width", 1, kMaxTransportImageSide),
+                          reader.integer("projector_height", 1, kMaxTransportImageSide)};
+  setup.entries_per_pixel = reader.integer("entries_per_pixel", 1, kMaxEntriesPerPixel);
+  setup.dot_spacing = reader.integer("dot_spacing", 0, kMaxTransportImageSide);
+  if (setup.dot_spacing == 1) reader.fail("attribute 'dot_spacing' is 1 (must be 0 or at least 2)");
+  const std::int64_t entries = std::int64_t{setup.camera_size.area()} * setup.entries_per_pixel;
+  if (entries > kMaxTransportEntries) {
+    reader.fail("camera_width x camera_height x entries_per_pixel = " + std::to_string(entries) + " exceeds " +
+                std::to_string(kMaxTransportEntries));
   }
+  setup.thresholds.black = static_cast<float>(reader.finite("black_threshold"));
+  setup.thresholds.white = static_cast<float>(reader.finite("white_threshold"));
+  setup.thresholds.noise = static_cast<float>(reader.finite("noise_threshold"));
 
   CompressedTransport transport;
   transport.setup = setup;
-  const auto k = static_cast<hsize_t>(setup.entries_per_pixel);
-  transport.indices = reader.dataset<std::int32_t>("indices", pixel_shape(setup, k));
-  transport.weights = reader.dataset<float>("weights", pixel_shape(setup, k));
-  transport.correspondence = reader.dataset<float>("correspondence", pixel_shape(setup, 2));
-  const auto decoded = reader.dataset<std::uint32_t>("decoded", pixel_shape(setup, 2));
-  transport.flags = reader.dataset<std::uint8_t>("flags", pixel_shape(setup, 0));
-  transport.direct_energy = reader.dataset<float>("direct_energy", pixel_shape(setup, 0));
-  const auto projector_pixels = static_cast<std::int32_t>(transport.projector_pixels());
-  if (std::any_of(transport.indices.begin(), transport.indices.end(),
-                  [&](std::int32_t q) { return q < -1 || q >= projector_pixels; })) {
-    reader.fail("dataset 'indices' holds values outside [-1, projector pixels)");
+  const std::string protocol = reader.string("protocol");
+  if (protocol != transport.protocol()) {
+    reader.fail("attribute 'protocol' is '" + protocol + "', dot_spacing " + std::to_string(setup.dot_spacing) +
+                " means '" + transport.protocol() + "'");
   }
+  const Shapes shapes(setup);
+  transport.indices = reader.dataset<std::int32_t>("indices", shapes.entries);
+  transport.weights = reader.dataset<float>("weights", shapes.entries);
+  transport.correspondence = reader.dataset<float>("correspondence", shapes.pairs);
+  const auto decoded = reader.dataset<std::uint32_t>("decoded", shapes.pairs);
+  transport.flags = reader.dataset<std::uint8_t>("flags", shapes.pixels);
+  transport.direct_energy = reader.dataset<float>("direct_energy", shapes.pixels);
+  reader.close();
+
+  check_values(reader, transport, decoded, shapes);
   transport.gray_x.resize(transport.camera_pixels());
   transport.gray_y.resize(transport.camera_pixels());
   for (std::size_t c = 0; c < transport.camera_pixels(); ++c) {

@@ -143,9 +143,21 @@ TEST_F(CalibrationAccuracyTest, DepthScaleOfTheEstimatedRig) {
   EXPECT_GT(comparison.points, 300);
   EXPECT_LT(std::abs(comparison.depth_scale_error), 6e-5);
   EXPECT_LT(comparison.depth_rms_error, 3e-4);
-  const auto self = compare_rigs(truth_, truth_);
-  EXPECT_LT(std::abs(self.depth_scale_error), 1e-9) << "the comparison itself";
-  EXPECT_LT(self.depth_rms_error, 1e-9);
+}
+
+// The comparison itself, on a rig whose error is known: the true rig with its baseline lengthened by 1e-4. Rays keep
+// their directions and the projector's centre moves out by the factor, so every triangulated point moves out by it:
+// depth scale error and depth RMS both exactly 1e-4, baseline error 1e-4, no focal, principal-point or rotation error.
+TEST_F(CalibrationAccuracyTest, RigComparisonMeasuresAKnownBaselineError) {
+  StereoRig longer = truth_;
+  longer.T = cv::Mat(truth_.T * (1.0 + 1e-4));  // a new matrix: assigning the expression would write into truth_.T
+  const auto comparison = compare_rigs(longer, truth_);
+  EXPECT_GT(comparison.points, 300);
+  EXPECT_NEAR(comparison.depth_scale_error, 1e-4, 1e-9);
+  EXPECT_NEAR(comparison.depth_rms_error, 1e-4, 1e-9);
+  EXPECT_NEAR(comparison.baseline_error, 1e-4, 1e-12);
+  EXPECT_LT(comparison.rotation_error_deg, 1e-9);
+  EXPECT_LT(comparison.camera_focal_error + comparison.projector_focal_error, 1e-15);
 }
 
 TEST_F(CalibrationAccuracyTest, RectifiedCorrespondencesShareRows) {

@@ -71,16 +71,16 @@ TEST_F(CalibrateCliTest, UnreadableImageIsExit3) {
 TEST_F(CalibrateCliTest, SquareBoardIsRejected) {
   const auto result = run_cli("calibrate-camera " + pose(0) + "/000_white.png --board 6x6 --square 20 -o " +
                               (out_ / "camera.yaml").string());
-  EXPECT_EQ(result.exit_code, kExitInput) << result.output;
+  EXPECT_EQ(result.exit_code, kExitUsage) << result.output;
   EXPECT_THAT(result.output, HasSubstr("inner corner counts differ"));
 }
 
-TEST_F(CalibrateCliTest, UnknownDistortionModelIsExit3) {
+TEST_F(CalibrateCliTest, UnknownDistortionModelIsExit2) {
   const auto result =
       run_cli("calibrate-camera " + pose(0) + "/000_white.png --board 9x6 --square 30 --distortion k4 -o " +
               (out_ / "camera.yaml").string());
-  EXPECT_EQ(result.exit_code, kExitInput) << result.output;
-  EXPECT_THAT(result.output, HasSubstr("--distortion k4"));
+  EXPECT_EQ(result.exit_code, kExitUsage) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("k4"));
   EXPECT_FALSE(fs::exists(out_ / "camera.yaml"));
 }
 
@@ -116,9 +116,10 @@ TEST_F(CalibrateCliTest, EvaluateRigNeverWritesOverAnInput) {
   const fs::path rig = out_ / "rig.yaml";
   fs::copy_file(kPoses.parent_path() / "truth" / "rig.yaml", rig);
   const auto before = fs::file_size(rig);
-  const auto result = run_cli("evaluate-rig " + rig.string() + " --truth " + rig.string() + " -o " + rig.string());
-  EXPECT_EQ(result.exit_code, kExitInput) << result.output;
-  EXPECT_THAT(result.output, HasSubstr("is the input rig"));
+  const auto result =
+      run_cli("evaluate-rig " + rig.string() + " --truth " + rig.string() + " -o " + rig.string() + " --force");
+  EXPECT_EQ(result.exit_code, kExitUsage) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("is also an input"));
   EXPECT_EQ(fs::file_size(rig), before);
 }
 

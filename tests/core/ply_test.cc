@@ -44,7 +44,7 @@ TEST_F(PlyTest, HeaderAndBodyReadBackExactly) {
   const auto ply = testing::read_ply_vertices(dir_ / "cloud.ply");
   EXPECT_EQ(ply.header_lines.front(), "format binary_little_endian 1.0");
   EXPECT_EQ(ply.header_lines[1], "comment test cloud, mm");
-  EXPECT_THAT(ply.properties, ElementsAre("x", "y", "z", "nx", "ny", "nz", "quality"));
+  EXPECT_THAT(ply.properties, ElementsAre("x", "y", "z", "nx", "ny", "nz", "u", "v", "quality"));
   ASSERT_EQ(ply.count, 5u);  // six pixels, one without a point
   EXPECT_EQ(ply.trailing_bytes, 0u);
   // Row-major pixel order skipping (1, 0); float values are stored bit for bit, so the comparison is exact.
@@ -52,9 +52,26 @@ TEST_F(PlyTest, HeaderAndBodyReadBackExactly) {
   for (std::size_t v = 0; v < 5; ++v) {
     const int x = pixels[v][0], y = pixels[v][1];
     const cv::Vec3f p = maps.points.at<cv::Vec3f>(y, x), n = maps.normals.at<cv::Vec3f>(y, x);
-    const float expected[7] = {p[0], p[1], p[2], n[0], n[1], n[2], maps.quality.at<float>(y, x)};
-    for (std::size_t k = 0; k < 7; ++k) EXPECT_EQ(ply.at(v, k), expected[k]) << "vertex " << v << " property " << k;
+    const float expected[9] = {
+        p[0], p[1], p[2], n[0], n[1], n[2], static_cast<float>(x), static_cast<float>(y), maps.quality.at<float>(y, x)};
+    for (std::size_t k = 0; k < 9; ++k) EXPECT_EQ(ply.at(v, k), expected[k]) << "vertex " << v << " property " << k;
   }
+}
+
+// A point without a normal (or a NaN scalar) keeps its place with 0 0 0 (or 0): no value in the file is NaN.
+TEST_F(PlyTest, NoNanReachesTheFile) {
+  Maps maps;
+  maps.normals.at<cv::Vec3f>(1, 1) = {NAN, NAN, NAN};
+  maps.quality.at<float>(1, 2) = INFINITY;
+  write_point_cloud_ply(dir_ / "cloud.ply", "", maps.points, maps.normals, {{"quality", maps.quality}});
+  const auto ply = testing::read_ply_vertices(dir_ / "cloud.ply");
+  ASSERT_EQ(ply.count, 5u);
+  for (std::size_t v = 0; v < ply.count; ++v) {
+    for (std::size_t k = 0; k < ply.properties.size(); ++k) EXPECT_TRUE(std::isfinite(ply.at(v, k))) << v << " " << k;
+  }
+  EXPECT_EQ(ply.at(3, 3), 0.0f);  // pixel (1, 1): its point, no normal
+  EXPECT_EQ(ply.at(3, 0), maps.points.at<cv::Vec3f>(1, 1)[0]);
+  EXPECT_EQ(ply.at(4, 8), 0.0f);  // pixel (2, 1): quality was infinite
 }
 
 TEST_F(PlyTest, EmptyCloudIsAValidFile) {
@@ -62,7 +79,7 @@ TEST_F(PlyTest, EmptyCloudIsAValidFile) {
   write_point_cloud_ply(dir_ / "empty.ply", "", none, none);
   const auto ply = testing::read_ply_vertices(dir_ / "empty.ply");
   EXPECT_EQ(ply.count, 0u);
-  EXPECT_EQ(ply.properties.size(), 6u);
+  EXPECT_EQ(ply.properties.size(), 8u);
   EXPECT_EQ(ply.trailing_bytes, 0u);
 }
 

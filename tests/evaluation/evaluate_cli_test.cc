@@ -37,10 +37,18 @@ TEST_F(EvaluateCliTest, WritesReportAndMapIntoTheReconstructionByDefault) {
   EXPECT_TRUE(fs::is_regular_file(dir_ / "out" / "error_map.png"));
 
   const auto other = run_cli("evaluate " + (dir_ / "out").string() + " --truth " + (dir_ / "sim" / "truth").string() +
-                             " --object wall -o " + (dir_ / "wall.json").string());
+                             " --object wall -o " + (dir_ / "wall.json").string() + " --force");
   EXPECT_EQ(other.exit_code, cli::kExitInput) << other.output;  // an infinite plane has no size
   EXPECT_THAT(other.output, HasSubstr("infinite plane"));
   EXPECT_FALSE(fs::exists(dir_ / "wall.json"));
+
+  // Evaluating again replaces the report and the map only with --force; nothing is lost without it.
+  const auto again = run_cli("evaluate " + (dir_ / "out").string() + " --truth " + (dir_ / "sim").string());
+  EXPECT_EQ(again.exit_code, cli::kExitUsage) << again.output;
+  EXPECT_THAT(again.output, HasSubstr("--force"));
+  EXPECT_EQ(
+      run_cli("evaluate " + (dir_ / "out").string() + " --truth " + (dir_ / "sim").string() + " --force").exit_code,
+      cli::kExitOk);
 }
 
 TEST_F(EvaluateCliTest, BadInputIsExitCode3AndBadUsage2) {

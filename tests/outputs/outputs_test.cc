@@ -91,15 +91,19 @@ TEST_F(OutputsTest, PointCloudHoldsTheValidPixelsWithConfidenceAsQuality) {
   const Reconstruction r = plane();
   write_reconstruction(r, {}, dir_ / "out", false);
   const auto ply = testing::read_ply_vertices(dir_ / "out" / "points.ply");
-  ASSERT_THAT(ply.properties, ::testing::ElementsAre("x", "y", "z", "nx", "ny", "nz", "quality"));
+  ASSERT_THAT(ply.properties, ::testing::ElementsAre("x", "y", "z", "nx", "ny", "nz", "u", "v", "quality"));
   ASSERT_EQ(ply.count, 36u * 30u);  // columns 4..39 of 30 rows
   // First vertex: pixel (4, 0); last: pixel (39, 29). Floats are stored bit for bit.
   EXPECT_EQ(ply.at(0, 0), r.points_mm.at<cv::Vec3f>(0, 4)[0]);
   EXPECT_EQ(ply.at(0, 2), 408.0f);
-  EXPECT_EQ(ply.at(0, 6), 0.1f);
+  EXPECT_EQ(ply.at(0, 6), 4.0f);  // u, v of pixel (4, 0)
+  EXPECT_EQ(ply.at(0, 7), 0.0f);
+  EXPECT_EQ(ply.at(0, 8), 0.1f);
   EXPECT_EQ(ply.at(ply.count - 1, 2), 400.0f + 78.0f + 29.0f);
   EXPECT_EQ(ply.at(ply.count - 1, 3), 0.6f);
-  EXPECT_EQ(ply.at(ply.count - 1, 6), 39.0f / 40.0f);
+  EXPECT_EQ(ply.at(ply.count - 1, 6), 39.0f);
+  EXPECT_EQ(ply.at(ply.count - 1, 7), 29.0f);
+  EXPECT_EQ(ply.at(ply.count - 1, 8), 39.0f / 40.0f);
 }
 
 TEST_F(OutputsTest, PreviewsFollowTheirColourRules) {

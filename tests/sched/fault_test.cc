@@ -1,4 +1,4 @@
-// The fault-injection grammar of RFRECON_INJECT_FAULT and when a policy fires.
+// The fault-injection grammar of RFRECON_INJECT_FAULT and when a policy fires (hangs: timeout_test.cc).
 #include "host/sched/fault.h"
 
 #include <gtest/gtest.h>
@@ -23,6 +23,13 @@ TEST(FaultPolicyTest, StarNamesEveryDevice) {
   EXPECT_NO_THROW(policy.check(0, 2));
 }
 
+TEST(FaultPolicyTest, HangTermsParseAndLeaveOtherTilesAlone) {
+  const auto policy = FaultPolicy::parse("hang:1:2,0:1,hang:*:9");
+  EXPECT_NO_THROW(policy.check(1, 1));
+  EXPECT_THROW(policy.check(0, 1), InjectedFault);
+  EXPECT_NO_THROW(policy.check(0, 2));
+}
+
 TEST(FaultPolicyTest, InjectedFaultIsAnOpenClError) {
   try {
     FaultPolicy::parse("0:1").check(0, 1);
@@ -34,7 +41,7 @@ TEST(FaultPolicyTest, InjectedFaultIsAnOpenClError) {
 }
 
 TEST(FaultPolicyTest, MalformedTermsAreInputErrorsNamingTheVariable) {
-  for (const char* spec : {"1", "a:1", "1:b", "1:0", "1:2:3", "1:2,x"}) {
+  for (const char* spec : {"1", "a:1", "1:b", "1:0", "1:2:3", "1:2,x", "hang:1", "hang:", "hang:x:1", "stall:1:2"}) {
     SCOPED_TRACE(spec);
     try {
       FaultPolicy::parse(spec);

@@ -1,6 +1,6 @@
 // Kernels through the scheduler: several devices give the single-device result bit for bit (each output pixel is
 // computed by one work-item, the same arithmetic in the same order, wherever its tile runs), with and without a
-// failing device. Tiny sizes: CI reruns these under oclgrind, which has one device (two-device cases skip).
+// failing or hung device. Tiny sizes: CI reruns these under oclgrind, which has one device (two-device cases skip).
 #include <cstdlib>
 #include <cstring>
 #include <random>
@@ -11,6 +11,7 @@
 #include "host/cl/device_selection.h"
 #include "host/transport/compute_transport.h"
 #include "host/transport/spmv_on_devices.h"
+#include "tests/sched/test_support.h"
 #include "tests/transport/synthetic_capture.h"
 #include "tests/transport/test_capture_feed.h"
 
@@ -39,12 +40,9 @@ void expect_identical(const transport::CompressedTransport& got, const transport
   expect_identical(got.direct_energy, expected.direct_energy, "direct_energy");
 }
 
-// Sets RFRECON_INJECT_FAULT for one scope (the transport stage reads it like the command line does).
-class InjectedFaults {
- public:
-  explicit InjectedFaults(const char* spec) { ::setenv(kInjectFaultEnv, spec, 1); }
-  ~InjectedFaults() { ::unsetenv(kInjectFaultEnv); }
-};
+using rfrecon::testing::hangs_untimed;
+using rfrecon::testing::kHangsUntimed;
+using rfrecon::testing::ScopedEnv;
 
 struct Capture {
   testing::PlaneScene scene;
@@ -78,6 +76,28 @@ class MultiDeviceTest : public ::testing::Test {
     auto accumulator =
         transport::make_reference_accumulator(testing::setup_for(linear, capture_.scene.projector_size, 3, 4));
     return testing::feed_all(*accumulator, capture_.sequence, linear);
+  }
+
+  // The dual product on every device with `faults` injected, checked against one device. Kernels built beforehand
+  // and one-pixel tiles (192 of them, each a kernel launch and a read): both devices start at once and each gets a
+  // first tile long before the other could have taken them all, even on a loaded machine. Should one device still
+  // take every tile first (then nothing fails and the image must still be right), a few runs give the other its tile.
+  transport::ProductRun dual_with_fault(const char* faults) {
+    const auto t = reference_transport();
+    const auto transposed = transport::transpose(t);
+    const std::vector<float> light_c(t.camera_pixels(), 1.0f);
+    for (auto& device : devices_) programs_.get(device, "transport/spmv.cl");
+    options_.granularity = 1;
+    options_.first_tile_items = 1;
+    options_.max_tile_items = 1;
+    options_.faults = FaultPolicy::parse(faults);
+    const auto expected = transport::dual_opencl(devices_[0], programs_, KernelEntry::kNdRange, transposed, light_c);
+    transport::ProductRun dual;
+    for (int attempt = 0; attempt < 5 && dual.report.failures.empty(); ++attempt) {
+      dual = dual_on_devices(devices_, programs_, KernelEntry::kNdRange, transposed, light_c, options_);
+      expect_identical(dual.image, expected, "dual");
+    }
+    return dual;
   }
 
   Capture capture_ = tiny_capture();
@@ -116,26 +136,19 @@ TEST_F(MultiDeviceTest, PrimalAndDualEqualTheSingleDeviceProducts) {
 
 TEST_F(MultiDeviceTest, DualSurvivesAFailingDevice) {
   if (devices_.size() < 2) GTEST_SKIP() << kNeedTwoDevices;
-  const auto t = reference_transport();
-  const auto transposed = transport::transpose(t);
-  const std::vector<float> light_c(t.camera_pixels(), 1.0f);
-  // Kernels built beforehand and one-pixel tiles (192 of them, each a kernel launch and a read): both devices start
-  // at once and device 0 gets a first tile long before device 1 could have taken them all, even on a loaded machine.
-  for (auto& device : devices_) programs_.get(device, "transport/spmv.cl");
-  options_.granularity = 1;
-  options_.first_tile_items = 1;
-  options_.max_tile_items = 1;
-  options_.faults = FaultPolicy::parse("0:1");
-  const auto expected = transport::dual_opencl(devices_[0], programs_, KernelEntry::kNdRange, transposed, light_c);
-  // On a loaded machine device 1 may still take every tile before device 0 takes its first (then nothing fails and
-  // the image must still be right); a few runs give device 0 its tile.
-  transport::ProductRun dual;
-  for (int attempt = 0; attempt < 5 && dual.report.failures.empty(); ++attempt) {
-    dual = dual_on_devices(devices_, programs_, KernelEntry::kNdRange, transposed, light_c, options_);
-    expect_identical(dual.image, expected, "dual");
-  }
+  const auto dual = dual_with_fault("0:1");
   ASSERT_EQ(dual.report.failures.size(), 1u);
   EXPECT_TRUE(dual.report.devices[0].failed);
+  EXPECT_FALSE(dual.report.failures[0].timed_out);
+}
+
+TEST_F(MultiDeviceTest, DualSurvivesAHungDevice) {
+  if (devices_.size() < 2) GTEST_SKIP() << kNeedTwoDevices;
+  options_.tile_timeout_s = 0.5;
+  const auto dual = dual_with_fault("hang:1:1");
+  ASSERT_EQ(dual.report.failures.size(), 1u);
+  EXPECT_TRUE(dual.report.devices[1].failed);
+  EXPECT_TRUE(dual.report.failures[0].timed_out);
 }
 
 class TransportOnDevicesTest : public MultiDeviceTest {
@@ -159,6 +172,34 @@ class TransportOnDevicesTest : public MultiDeviceTest {
         .transport;
   }
 
+  // Device 1 fails or hangs (`faults`) after both Gray axes have started, so the replay has frames to re-read: the
+  // transport is still the single-device one, and the failure is reported.
+  // Before a short tile timeout: a kernel build slower than it (a loaded machine) would be taken as a hang, and its
+  // thread, still building, would outlive the objects of the stage (docs/scheduler.md, "What it cannot fence").
+  void build_kernels() {
+    for (auto& device : devices_) {
+      programs_.get(device, "transport/decode.cl");
+      programs_.get(device, "transport/compress.cl", "-DRF_K=" + std::to_string(setup_.entries_per_pixel));
+    }
+  }
+
+  void expect_blocks_replayed_after(const char* faults, bool timed_out) {
+    build_kernels();
+    const ScopedEnv injected(kInjectFaultEnv, faults);
+    const auto run = on_devices();
+    expect_identical(run.transport, on_first_device());
+    std::vector<DeviceFailure> failures;
+    std::size_t replayed = 0;
+    for (const auto& stage : run.schedule) {
+      failures.insert(failures.end(), stage.failures.begin(), stage.failures.end());
+      replayed += stage.devices[0].replayed_items;
+    }
+    ASSERT_EQ(failures.size(), 1u);
+    EXPECT_EQ(failures[0].device, 1u);
+    EXPECT_EQ(failures[0].timed_out, timed_out);
+    EXPECT_GT(replayed, 0u);
+  }
+
   testing::TempDir dir_{"sched_transport"};
   transport::TransportSetup setup_;
 };
@@ -178,21 +219,25 @@ TEST_F(TransportOnDevicesTest, EqualsTheSingleDeviceTransport) {
 
 TEST_F(TransportOnDevicesTest, FailedDeviceBlocksAreReplayedElsewhere) {
   if (devices_.size() < 2) GTEST_SKIP() << kNeedTwoDevices;
-  const InjectedFaults faults("1:12");  // after both Gray axes have started, so the replay has frames to re-read
-  const auto run = on_devices();
-  expect_identical(run.transport, on_first_device());
-  std::size_t failures = 0;
-  std::size_t replayed = 0;
-  for (const auto& stage : run.schedule) {
-    failures += stage.failures.size();
-    replayed += stage.devices[0].replayed_items;
-  }
-  EXPECT_EQ(failures, 1u);
-  EXPECT_GT(replayed, 0u);
+  expect_blocks_replayed_after("1:12", false);
+}
+
+TEST_F(TransportOnDevicesTest, HungDeviceBlocksAreReplayedElsewhere) {
+  if (devices_.size() < 2) GTEST_SKIP() << kNeedTwoDevices;
+  const ScopedEnv timeout(kTileTimeoutEnv, "0.5");
+  expect_blocks_replayed_after("hang:1:12", true);
 }
 
 TEST_F(TransportOnDevicesTest, EveryDeviceFailingIsAClearOpenClError) {
-  const InjectedFaults faults("*:2");
+  const ScopedEnv faults(kInjectFaultEnv, "*:2");
+  EXPECT_THROW(on_devices(), AllDevicesFailed);
+}
+
+TEST_F(TransportOnDevicesTest, EveryDeviceHangingIsAClearOpenClError) {
+  if (hangs_untimed(devices_)) GTEST_SKIP() << kHangsUntimed;
+  build_kernels();
+  const ScopedEnv timeout(kTileTimeoutEnv, "0.5");
+  const ScopedEnv faults(kInjectFaultEnv, "hang:*:2");
   EXPECT_THROW(on_devices(), AllDevicesFailed);
 }
 

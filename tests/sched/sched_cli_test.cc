@@ -1,5 +1,6 @@
 // The commands that run kernels use every selected device and report per-stage, per-device shares in --summary;
-// failover through RFRECON_INJECT_FAULT; every device failing exits with the OpenCL code (5).
+// failover through RFRECON_INJECT_FAULT, a hung device dropped after RFRECON_TILE_TIMEOUT; every device failing or
+// hanging exits with the OpenCL code (5).
 #include <cstdlib>
 #include <fstream>
 
@@ -10,7 +11,9 @@
 #include "host/cl/device_selection.h"
 #include "host/cli/exit_codes.h"
 #include "host/sched/fault.h"
+#include "host/sched/watchdog.h"
 #include "tests/common/run_cli.h"
+#include "tests/sched/test_support.h"
 #include "tests/transport/synthetic_capture.h"
 
 namespace rfrecon::sched {
@@ -23,6 +26,7 @@ class SchedCliTest : public ::testing::Test {
  protected:
   void SetUp() override {
     ::unsetenv(kInjectFaultEnv);
+    ::unsetenv(kTileTimeoutEnv);
     testing::SceneOptions options;
     options.camera_size = {24, 20};
     options.projector_size = {16, 12};
@@ -30,12 +34,21 @@ class SchedCliTest : public ::testing::Test {
     const auto sequence = capture::make_protocol({options.projector_size, 3});
     testing::write_capture(capture_, scene, sequence, 3, testing::render_frames(scene, sequence, 3, 1.0, 7));
   }
-  void TearDown() override { ::unsetenv(kInjectFaultEnv); }
+  void TearDown() override {
+    ::unsetenv(kInjectFaultEnv);
+    ::unsetenv(kTileTimeoutEnv);
+  }
 
   std::string transport_args() const {
     return "transport " + capture_.string() + " -o " + (dir_.path() / "T.h5").string() + " --summary " +
-           (dir_.path() / "summary.json").string();
+           (dir_.path() / "summary.json").string() + " --force";
   }
+  // Runs the transport once, so that the kernel builds of the next run come from PoCL's cache: with a short tile
+  // timeout, a slow build would be taken as a hang, and its thread, still building, would outlive the command's
+  // objects (docs/scheduler.md, "What it cannot fence").
+  void warm_kernel_cache() const { ASSERT_EQ(run_cli(transport_args()).exit_code, cli::kExitOk); }
+  static constexpr const char* kShortTimeout = "2";  // seconds: cached builds take 0.2 to 0.5 s, more under load
+
   nlohmann::json summary() const {
     std::ifstream file(dir_.path() / "summary.json");
     return nlohmann::json::parse(file);
@@ -83,6 +96,33 @@ TEST_F(SchedCliTest, EveryDeviceFailingExitsWithTheOpenClCodeAndWritesNothing) {
   EXPECT_NE(result.output.find("every selected device failed"), std::string::npos) << result.output;
   EXPECT_FALSE(std::filesystem::exists(dir_.path() / "T.h5"));
   EXPECT_FALSE(std::filesystem::exists(dir_.path() / "summary.json"));
+}
+
+TEST_F(SchedCliTest, TransportCompletesWhenADeviceHangsAndExits) {
+  if (devices_ < 2) GTEST_SKIP() << "needs two OpenCL devices (POCL_DEVICES=\"pthread pthread\")";
+  warm_kernel_cache();
+  ::setenv(kInjectFaultEnv, "hang:1:3", 1);
+  ::setenv(kTileTimeoutEnv, kShortTimeout, 1);
+  const auto result = run_cli(transport_args());  // returns: the hung thread does not keep the process alive
+  ASSERT_EQ(result.exit_code, cli::kExitOk) << result.output;
+  EXPECT_NE(result.output.find("tile timeout"), std::string::npos) << result.output;  // the warning
+  std::vector<nlohmann::json> failures;
+  const auto json = summary();
+  for (const auto& stage : json["schedule"])
+    failures.insert(failures.end(), stage["failures"].begin(), stage["failures"].end());
+  ASSERT_EQ(failures.size(), 1u);
+  EXPECT_EQ(failures[0]["device"], 1);
+  EXPECT_EQ(failures[0]["timed_out"], true);
+}
+
+TEST_F(SchedCliTest, EveryDeviceHangingExitsWithTheOpenClCode) {
+  if (rfrecon::testing::hangs_untimed(cl::open_devices(""))) GTEST_SKIP() << rfrecon::testing::kHangsUntimed;
+  warm_kernel_cache();
+  ::setenv(kInjectFaultEnv, "hang:*:2", 1);
+  ::setenv(kTileTimeoutEnv, kShortTimeout, 1);
+  const auto result = run_cli(transport_args());
+  EXPECT_EQ(result.exit_code, cli::kExitOpenCl) << result.output;
+  EXPECT_NE(result.output.find("every selected device failed"), std::string::npos) << result.output;
 }
 
 TEST_F(SchedCliTest, DualSummaryHasTheDualStage) {

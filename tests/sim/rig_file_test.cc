@@ -1,6 +1,9 @@
 // The rig file (calib/rig.h): exact round trip, rectification that puts corresponding points on one row, and
 // errors naming the file and key.
 #include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
@@ -115,6 +118,41 @@ TEST_F(RigFileTest, MissingOrMisSizedKeyIsNamed) {
   bad_t.replace(bad_t.find(column), column.size(), "T: !!opencv-matrix\n   rows: 1\n   cols: 3");
   expect_error(bad_t, "'T' must be a 3x1");
   EXPECT_THROW(calib::read_rig(file_.string() + ".missing"), InputError);
+}
+
+// Sizes and shapes a hostile file could use to make the reader allocate or loop without end are refused first, and
+// OpenCV's own parser errors come back as InputError naming the file.
+TEST_F(RigFileTest, HostileSizesAndSyntaxAreInputErrors) {
+  calib::write_rig(sim::true_rig(sim::builtin_scene("cube-anisotropic")), file_);
+  std::string text;
+  {
+    std::ifstream in(file_);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string out = text;
+    const auto at = out.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return at == std::string::npos ? out : out.replace(at, from.size(), to);
+  };
+  const auto camera_size =
+      text.substr(text.find("camera_size:"), text.find('\n', text.find("camera_size:")) - text.find("camera_size:"));
+  for (const auto& [content, needle] : std::vector<std::pair<std::string, std::string>>{
+           {replaced(camera_size, "camera_size: [ 200000000, 2 ]"), "over the limit"},
+           {replaced(camera_size, "camera_size: [ 2.0e9, 2 ]"), "integers"},
+           {replaced("T: !!opencv-matrix\n   rows: 3\n   cols: 1",
+                     "T: !!opencv-matrix\n   rows: 30000\n   cols: 30000"),
+            "at most 16 elements"},
+           {"%YAML:1.0\n---\n- 1\n- 2\n", "rig.yaml"},
+           {"%YAML:1.0\n---\nrms: [\n", "rig.yaml"}}) {
+    std::ofstream(file_, std::ios::trunc) << content;
+    try {
+      calib::read_rig(file_);
+      ADD_FAILURE() << "no error for " << needle;
+    } catch (const InputError& error) {
+      EXPECT_NE(std::string(error.what()).find(needle), std::string::npos) << error.what();
+    }
+  }
 }
 
 }  // namespace

@@ -52,10 +52,10 @@ Scene small_plane_scene() {
 TEST_F(SimulateTest, SameSeedGivesIdenticalBytes) {
   // The noise generator is seeded per (seed, frame): same seed, same bytes; another seed, other noise.
   Scene scene = small_plane_scene();
-  simulate(scene, dir_ / "a", {2, false});
-  simulate(scene, dir_ / "b", {1, false});
+  simulate(scene, dir_ / "a", {2, false, {}});
+  simulate(scene, dir_ / "b", {1, false, {}});
   scene.render.seed = 2;
-  simulate(scene, dir_ / "c", {2, false});
+  simulate(scene, dir_ / "c", {2, false, {}});
   const auto manifest = capture::read_manifest(dir_ / "a" / "capture");
   ASSERT_EQ(manifest.frames.size(), 2u + 2u * (7 + 6) + 16u);  // white, black, Gray code pairs, 4x4 dots
   for (const auto& frame : manifest.frames) {
@@ -70,7 +70,7 @@ TEST_F(SimulateTest, SameSeedGivesIdenticalBytes) {
   }
   // scene.json reproduces the run.
   const Scene again = load_scene_file(dir_ / "a" / "scene.json");
-  simulate(again, dir_ / "d", {2, false});
+  simulate(again, dir_ / "d", {2, false, {}});
   EXPECT_EQ(bytes(dir_ / "a" / "capture" / manifest.frames[5].file),
             bytes(dir_ / "d" / "capture" / manifest.frames[5].file));
 }
@@ -87,7 +87,7 @@ TEST_F(SimulateTest, NoiseFreeFramesLinearizeToTransport) {
     scene.capture.black_level = 64;
     scene.capture.response_gamma = gamma;
     const fs::path out = dir_ / ("gamma" + std::to_string(gamma));
-    simulate(scene, out, {2, false});
+    simulate(scene, out, {2, false, {}});
     const auto T = render_transport(scene).T;
     const auto manifest = capture::read_manifest(out / "capture");
     const double tolerance = gamma * 0.5 / (65535.0 - 64.0) + 1e-6;
@@ -170,14 +170,14 @@ TEST_F(SimulateTest, FailureLeavesNothingBehind) {
   // output directory nor a staging directory; an existing non-empty output is refused untouched without force.
   Scene scene = small_plane_scene();
   scene.capture.dot_spacing = 1;
-  EXPECT_THROW(simulate(scene, dir_ / "out", {2, false}), InputError);
+  EXPECT_THROW(simulate(scene, dir_ / "out", {2, false, {}}), InputError);
   EXPECT_TRUE(entries().empty());
   fs::create_directories(dir_ / "out");
   std::ofstream(dir_ / "out" / "keep.txt") << "precious";
-  EXPECT_THROW(simulate(small_plane_scene(), dir_ / "out", {2, false}), InputError);
+  EXPECT_THROW(simulate(small_plane_scene(), dir_ / "out", {2, false, {}}), UsageError);
   EXPECT_EQ(bytes(dir_ / "out" / "keep.txt"), "precious");
   EXPECT_EQ(entries(), std::vector<std::string>{"out"});
-  simulate(small_plane_scene(), dir_ / "out", {2, true});
+  simulate(small_plane_scene(), dir_ / "out", {2, true, {}});
   EXPECT_FALSE(fs::exists(dir_ / "out" / "keep.txt"));
   EXPECT_TRUE(fs::is_regular_file(dir_ / "out" / "capture" / "manifest.json"));
 }

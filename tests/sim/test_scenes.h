@@ -2,13 +2,16 @@
 // a point 600 mm ahead, so whole renders take milliseconds.
 #pragma once
 
+#include <vector>
+
 #include <nlohmann/json.hpp>
 
 #include "sim/scene.h"
 
 namespace rfrecon::sim::testing {
 
-inline nlohmann::json small_rig(nlohmann::json objects) {
+// `objects` is a vector, not a json: `json x = {one}` is an array under g++ but a copy of `one` under clang.
+inline nlohmann::json small_rig(const std::vector<nlohmann::json>& objects) {
   return {{"name", "test"},
           {"camera", {{"size", {80, 60}}, {"focal", {100.0, 100.0}}}},
           {"projector",
@@ -16,7 +19,7 @@ inline nlohmann::json small_rig(nlohmann::json objects) {
             {"focal", {100.0, 100.0}},
             {"pose", {{"position", {150.0, 0.0, 0.0}}, {"look_at", {0.0, 0.0, 600.0}}}}}},
           {"radiometry", {{"intensity", 1.0e6}}},
-          {"objects", std::move(objects)}};
+          {"objects", objects}};
 }
 
 inline nlohmann::json tilted_plane(const nlohmann::json& material) {

@@ -2,8 +2,12 @@
 // with an InputError naming the file and leave no T.h5 behind.
 #include <cmath>
 #include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "host/capture/protocol.h"
@@ -111,6 +115,18 @@ TEST_F(TransportCliTest, OpencvLayoutWithoutManifestDecodesLikeTheManifest) {
   }
   EXPECT_GT(both, transport.camera_pixels() / 2);
   EXPECT_EQ(same, both);
+  // And against the scene's true correspondences: the integer code is the projector pixel holding the true point.
+  std::size_t valid = 0, right = 0;
+  for (std::size_t c = 0; c < transport.camera_pixels(); ++c) {
+    const cv::Vec2f truth = scene_.correspondence.at<cv::Vec2f>(static_cast<int>(c));
+    if ((transport.flags[c] & kFlagValid) == 0 || std::isnan(truth[0])) continue;
+    ++valid;
+    right += transport.gray_x[c] == static_cast<std::uint32_t>(std::floor(truth[0] + 0.5f)) &&
+                     transport.gray_y[c] == static_cast<std::uint32_t>(std::floor(truth[1] + 0.5f))
+                 ? 1
+                 : 0;
+  }
+  EXPECT_GT(right, 0.95 * static_cast<double>(valid)) << right << " of " << valid;
 }
 
 TEST_F(TransportCliTest, MissingFrameIsNamed) {
@@ -153,9 +169,131 @@ TEST_F(TransportCliTest, AllDarkCaptureIsNamed) {
   EXPECT_NE(message.find(manifest_.frames[0].file), std::string::npos) << message;  // the white frame
 }
 
+// The bytes of a file, to show that a refused command left it as it was.
+std::string bytes_of(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+template <typename Error>
+std::string error_of(const std::vector<std::string>& args) {
+  try {
+    run_cli(args);
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "(no error of the expected type)";
+}
+
+TEST_F(TransportCliTest, NoOutputReplacesADeviceOrAnInput) {
+  const std::string manifest_bytes = bytes_of(capture_ / "manifest.json");
+  const std::string frame_bytes = bytes_of(frame_path(2));
+  for (const auto& output : {fs::path("/dev/null"), capture_ / "manifest.json", frame_path(2), capture_}) {
+    const auto message = error_of<UsageError>({"transport", capture_.string(), "-o", output.string(), "--force"});
+    EXPECT_NE(message.find(output.string()), std::string::npos) << message;
+  }
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  EXPECT_EQ(bytes_of(capture_ / "manifest.json"), manifest_bytes);
+  EXPECT_EQ(bytes_of(frame_path(2)), frame_bytes);
+
+  run_cli({"transport", capture_.string(), "-o", output_.string()});
+  const std::string transport_bytes = bytes_of(output_);
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"dual", output_.string(), "-o", output_.string(), "--force"},
+           {"dual", output_.string(), "-o", (dir_.path() / "d.png").string(), "--summary", output_.string(), "--force"},
+           {"transport", capture_.string(), "-o", output_.string()}}) {
+    EXPECT_NE(error_of<UsageError>(args).find(output_.string()), std::string::npos) << args[0];
+  }
+  EXPECT_EQ(bytes_of(output_), transport_bytes);
+  EXPECT_FALSE(fs::exists(dir_.path() / "d.png"));
+}
+
+TEST_F(TransportCliTest, AnExistingOutputIsReplacedOnlyWithForce) {
+  run_cli({"transport", capture_.string(), "-o", output_.string()});
+  EXPECT_NE(error_of<UsageError>({"transport", capture_.string(), "-o", output_.string()}).find("--force"),
+            std::string::npos);
+  const fs::path dual = dir_.path() / "dual.png";
+  run_cli({"dual", output_.string(), "-o", dual.string()});
+  EXPECT_NE(error_of<UsageError>({"dual", output_.string(), "-o", dual.string()}).find("--force"), std::string::npos);
+  run_cli({"dual", output_.string(), "-o", dual.string(), "--force"});
+  run_cli({"transport", capture_.string(), "-o", output_.string(), "--force"});
+  EXPECT_EQ(read_transport(output_).setup.camera_size, scene_.camera_size);
+}
+
+TEST_F(TransportCliTest, ASummaryThatCannotBeWrittenFailsTheCommandBeforeTheMainOutput) {
+  const std::string summary = "/proc/rfrecon-summary.json";  // no file can be created in /proc
+  EXPECT_NE(error_of<OutputError>({"transport", capture_.string(), "-o", output_.string(), "--summary", summary})
+                .find(summary),
+            std::string::npos);
+  EXPECT_FALSE(fs::exists(output_));
+  run_cli({"transport", capture_.string(), "-o", output_.string()});
+  const fs::path dual = dir_.path() / "dual.png";
+  EXPECT_NE(error_of<OutputError>({"dual", output_.string(), "-o", dual.string(), "--summary", summary}).find(summary),
+            std::string::npos);
+  EXPECT_FALSE(fs::exists(dual));
+  for (const auto& entry : fs::directory_iterator(dir_.path())) {
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+  }
+}
+
+TEST_F(TransportCliTest, FramesMayNotLeaveTheCaptureDirectory) {
+  std::ofstream(dir_.path() / "outside.png") << "x";
+  for (const auto& name : {std::string("../outside.png"), (dir_.path() / "outside.png").string()}) {
+    auto manifest = manifest_;
+    manifest.frames[0].file = name;
+    capture::write_manifest(manifest, capture_);
+    EXPECT_NE(transport_error().find("--allow-outside-frames"), std::string::npos) << name;
+  }
+  fs::create_symlink(dir_.path() / "outside.png", capture_ / "link.png");
+  auto manifest = manifest_;
+  manifest.frames[0].file = "link.png";
+  capture::write_manifest(manifest, capture_);
+  EXPECT_NE(transport_error().find("link.png"), std::string::npos);
+}
+
+TEST_F(TransportCliTest, AFileListedForTwoPatternsIsRefused) {
+  auto manifest = manifest_;
+  manifest.frames[3].file = manifest.frames[2].file;
+  capture::write_manifest(manifest, capture_);
+  EXPECT_NE(transport_error().find("same file"), std::string::npos);
+}
+
+TEST_F(TransportCliTest, PatternsIdenticalToTheirInversesDecodeNothingAndWriteNothing) {
+  for (std::size_t i = 0; i < manifest_.frames.size(); ++i) {
+    const auto& pattern = manifest_.frames[i].pattern;
+    if (pattern.kind != capture::PatternKind::kGrayColumn && pattern.kind != capture::PatternKind::kGrayRow) continue;
+    if (!pattern.inverse) continue;
+    for (std::size_t j = 0; j < manifest_.frames.size(); ++j) {
+      const auto& other = manifest_.frames[j].pattern;
+      if (other.kind == pattern.kind && other.bit == pattern.bit && !other.inverse) {
+        fs::copy_file(frame_path(j), frame_path(i), fs::copy_options::overwrite_existing);
+      }
+    }
+  }
+  EXPECT_NE(error_of<ProcessingError>({"transport", capture_.string(), "-o", output_.string()}).find("no camera pixel"),
+            std::string::npos);
+  EXPECT_FALSE(fs::exists(output_));
+}
+
+TEST_F(TransportCliTest, WronglyTypedOptionalManifestFieldsAreNamed) {
+  for (const auto& [field, value] : {std::pair{"dot_spacing", nlohmann::json("4")},
+                                     {"bit_depth", nlohmann::json(nullptr)},
+                                     {"black_level", nlohmann::json::array()},
+                                     {"camera_response", nlohmann::json(1)}}) {
+    std::ifstream in(capture_ / "manifest.json");
+    nlohmann::json root = nlohmann::json::parse(in);
+    in.close();
+    const nlohmann::json original = root;
+    root[field] = value;
+    std::ofstream(capture_ / "manifest.json", std::ios::trunc) << root.dump();
+    EXPECT_NE(transport_error().find(field), std::string::npos) << field;
+    std::ofstream(capture_ / "manifest.json", std::ios::trunc) << original.dump();
+  }
+}
+
 TEST_F(TransportCliTest, PatternsDecodeBackToTheirProjectorCoordinates) {
   const fs::path out = dir_.path() / "patterns";
-  run_cli({"patterns", "--projector", "20x9", "--out", out.string(), "--dot-spacing", "4"});
+  run_cli({"patterns", "--projector", "20x9", "-o", out.string(), "--dot-spacing", "4"});
   const auto manifest = capture::read_manifest(out);
   EXPECT_EQ(manifest.frames.size(), 2u + 2u * (5u + 4u) + 16u);
   // Decoding the written Gray images as a camera that sees the projector pixel for pixel gives every coordinate.
