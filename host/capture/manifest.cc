@@ -287,9 +287,7 @@ CaptureManifest manifest_from_opencv_layout(const fs::path& capture_dir, cv::Siz
   check_image_size(projector_size, "--projector");
   std::vector<std::string> files;
   for (const auto& entry : fs::directory_iterator(capture_dir, ec)) {
-    std::string extension = entry.path().extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
-    if (entry.is_regular_file() && kImageExtensions.count(extension) != 0) {
+    if (entry.is_regular_file() && kImageExtensions.count(lowercase_extension(entry.path())) != 0) {
       files.push_back(entry.path().filename().string());
     }
   }

@@ -1,6 +1,8 @@
 // Checked image reads and writes over cv::imread / cv::imwrite.
 #include "host/core/image_file.h"
 
+#include <algorithm>
+#include <cctype>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -14,6 +16,13 @@
 namespace rfrecon {
 
 std::string size_text(cv::Size size) { return std::to_string(size.width) + "x" + std::to_string(size.height); }
+
+std::string lowercase_extension(const std::filesystem::path& file) {
+  std::string extension = file.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
 
 void write_image(const std::filesystem::path& file, const cv::Mat& image) {
   const std::vector<int> uncompressed{cv::IMWRITE_TIFF_COMPRESSION, 1};

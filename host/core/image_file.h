@@ -11,6 +11,9 @@ namespace rfrecon {
 // "WxH", as messages and options write image sizes.
 std::string size_text(cv::Size size);
 
+// The extension of `file` in lower case, with its dot (".tiff"); "" when it has none.
+std::string lowercase_extension(const std::filesystem::path& file);
+
 // cv::imwrite by extension; float images go to TIFF uncompressed (OpenCV 4.6 corrupts multi-channel float TIFFs
 // with its default LZW). Not atomic by itself: write into a StagingDirectory or AtomicFile temporary. Throws
 // OutputError naming the file when it cannot be written.

@@ -41,6 +41,7 @@ fs::path resolved(const fs::path& path) {
   return ec ? fs::absolute(path).lexically_normal() : result;
 }
 
+// Whether `path` is `directory` itself or lies under it, links resolved.
 bool is_within(const fs::path& path, const fs::path& directory) {
   const fs::path relative = resolved(path).lexically_relative(resolved(directory));
   return !relative.empty() && *relative.begin() != "..";
@@ -87,7 +88,7 @@ void check_output_directory(const OutputPath& output, const std::vector<fs::path
     throw UsageError(quoted(output) + " is " + kind_of(status.type()) + ", not a directory");
   }
   for (const auto& input : inputs) {
-    if (resolved(input) == resolved(output.path) || is_within(input, output.path)) {
+    if (is_within(input, output.path)) {  // the directory itself, or anything under it
       throw UsageError(quoted(output) + " holds the input " + input.string() +
                        "; replacing the directory would delete it");
     }
@@ -101,7 +102,7 @@ void check_distinct_outputs(const std::vector<OutputPath>& outputs) {
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     for (std::size_t j = 0; j < outputs.size(); ++j) {
       if (i == j || outputs[i].path.empty() || outputs[j].path.empty()) continue;
-      if (resolved(outputs[i].path) == resolved(outputs[j].path) || is_within(outputs[j].path, outputs[i].path)) {
+      if (is_within(outputs[j].path, outputs[i].path)) {  // the same path, or one under the other
         throw UsageError(quoted(outputs[j]) + " and " + quoted(outputs[i]) + " would overwrite each other");
       }
     }

@@ -11,6 +11,7 @@
 
 #include "host/core/atomic_file.h"
 #include "host/core/errors.h"
+#include "host/core/image_file.h"
 #include "host/core/output_path.h"
 #include "host/core/percentile.h"
 #include "host/core/stage_clock.h"
@@ -22,8 +23,7 @@ namespace rfrecon::pipeline {
 namespace {
 // .tif/.tiff: 32-bit float. Otherwise 16-bit with `white` (the 99.9th percentile) mapped to 65535.
 std::vector<unsigned char> encode(const cv::Mat& image, const std::filesystem::path& output, float& white) {
-  std::string extension = output.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
+  const std::string extension = lowercase_extension(output);
   std::vector<unsigned char> bytes;
   if (extension == ".tif" || extension == ".tiff") {
     cv::imencode(".tiff", image, bytes);
@@ -41,8 +41,7 @@ std::vector<unsigned char> encode(const cv::Mat& image, const std::filesystem::p
 
 // The output's extension is one OpenCV writes 16-bit images as, or a TIFF (float).
 void check_image_extension(const std::filesystem::path& output) {
-  std::string extension = output.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
+  const std::string extension = lowercase_extension(output);
   if (extension != ".png" && extension != ".tif" && extension != ".tiff" && extension != ".pgm") {
     throw UsageError("--output " + output.string() +
                      ": the extension must be .png, .pgm (16-bit) or .tif/.tiff (float)");

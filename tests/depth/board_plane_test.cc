@@ -156,15 +156,17 @@ TEST(BoardPlane, EveryMethodReconstructsTheBoardFlat) {
   // The target is 0.02 % of the board's diagonal (0.090 mm) with the rig calibrated from the other poses. On the
   // pixels all three reconstruct every method meets it (measured: fused 0.0053 %, integrate 0.0103 %, triangulate
   // 0.0095 %). Triangulation alone also reconstructs pixels the others mask, near the board's rim and its squares'
-  // edges, where its correspondences are biased: over its own pixels it is printed, not asserted (0.0217 %).
+  // edges, where its correspondences are biased: over its own pixels it reaches 0.0217 %, held at 0.025 % as before.
   const auto flatness = [&](Method method) {
     return measure(points[method], common, kEstimatedRig, method_name(method).c_str()).flatness_mm;
   };
   EXPECT_LE(flatness(Method::kFused), 2e-4 * kBoardDiagonalMm);
   EXPECT_LE(flatness(Method::kIntegrate), 2e-4 * kBoardDiagonalMm);
   EXPECT_LE(flatness(Method::kTriangulate), 2e-4 * kBoardDiagonalMm);
-  (void)measure(points[Method::kTriangulate], with_points(board, points[Method::kTriangulate]), kEstimatedRig,
-                "triangulate, its own pixels");
+  EXPECT_LE(measure(points[Method::kTriangulate], with_points(board, points[Method::kTriangulate]), kEstimatedRig,
+                    "triangulate, its own pixels")
+                .flatness_mm,
+            2.5e-4 * kBoardDiagonalMm);
 }
 
 TEST(BoardPlane, FusedCornersGiveTheTrueScaleWithTheTrueRig) {
