@@ -70,8 +70,9 @@ HEADER_EXTENSIONS = (".h", ".hpp")
 
 # calib is CPU only: its closure is exactly this.
 CALIB_CLOSURE = {"core"}
-# The scheduler knows devices, tiles and failures, never a stage: its closure must stay within these.
-SCHED_ALLOWED = {"core", "cl"}
+# The scheduler knows devices, tiles and failures, never a stage: its closure must stay within these (kernels, the
+# OpenCL C sources and their parameters header, comes through cl, which embeds them).
+SCHED_ALLOWED = {"core", "cl", "kernels"}
 # The only layers that may depend on (and include) the simulator.
 SIM_USERS = {"sim", "pipeline", "cli"}
 # Layers with an explicit "never the simulator" rule of their own (reported with this reason).

@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(
-  build-essential cmake pkg-config git python3 clang-format clang-tidy
+  build-essential cmake pkg-config git python3 clang clang-format clang-tidy
   ocl-icd-opencl-dev opencl-c-headers opencl-clhpp-headers pocl-opencl-icd clinfo oclgrind
   libeigen3-dev libopencv-dev libopencv-contrib-dev
   libgtest-dev libgmock-dev libbenchmark-dev

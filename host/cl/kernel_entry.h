@@ -1,4 +1,5 @@
-// Which entry of a kernel runs: one work-item per pixel or row (CPU, GPU) or a single work-item loop (FPGA).
+// Which entry of a kernel runs: one work-item per pixel or row (CPU, GPU) or a single work-item loop (FPGA). Which
+// device runs which: host/cl/entry_choice.h.
 #pragma once
 
 namespace rfrecon::cl {

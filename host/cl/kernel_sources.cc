@@ -32,25 +32,29 @@ std::string_view quoted_include(std::string_view line) {
   return close == std::string_view::npos ? std::string_view{} : line.substr(1, close - 1);
 }
 
-void append_resolved(std::string_view path, std::set<std::string, std::less<>>& seen, std::string& out) {
-  if (!seen.insert(std::string(path)).second) return;
+// Inlines path's text and its includes, recursively. `open` holds the files being inlined: a file that includes
+// itself through a cycle is not inlined again; any other include is, as the preprocessor does (the headers' include
+// guards then keep them single, and the unguarded *_rows.h of kernels/depth/ are instantiated once per include).
+void append_resolved(std::string_view path, std::set<std::string, std::less<>>& open, std::string& out) {
+  if (!open.insert(std::string(path)).second) return;
   std::istringstream lines{std::string(embedded_kernel_file(path))};
   std::string line;
   while (std::getline(lines, line)) {
     if (const auto included = quoted_include(line); !included.empty()) {
-      append_resolved(included, seen, out);
+      append_resolved(included, open, out);
     } else {
       out += line;
       out += '\n';
     }
   }
+  open.erase(open.find(path));
 }
 }  // namespace
 
 std::string resolve_kernel_source(std::string_view path) {
-  std::set<std::string, std::less<>> seen;
+  std::set<std::string, std::less<>> open;
   std::string out;
-  append_resolved(path, seen, out);
+  append_resolved(path, open, out);
   return out;
 }
 

@@ -35,21 +35,9 @@ void build_or_throw(::cl::Program& program, DeviceContext& device, std::string_v
 
 std::string device_preamble(const DeviceInfo& info) {
   std::string text = "// rfrecon device preamble for " + describe(info) + "\n";
-  if (info.intel_fpga) text += "#define RF_TARGET_INTEL_FPGA 1\n";
-  if (info.xilinx_fpga) text += "#define RF_TARGET_XILINX_FPGA 1\n";
+  if (const std::string macro = target_macro(info); !macro.empty()) text += "#define " + macro + " 1\n";
   text += "#line 1\n";
   return text;
-}
-
-std::string binary_file_name(std::string_view kernel_path, const DeviceInfo& info) {
-  std::string stem(kernel_path);
-  if (const auto dot = stem.rfind(".cl"); dot != std::string::npos && dot + 3 == stem.size()) stem.resize(dot);
-  for (char& c : stem) {
-    if (c == '/') c = '_';
-  }
-  if (info.intel_fpga) return stem + ".aocx";
-  if (info.xilinx_fpga) return stem + ".xclbin";
-  return stem + ".bin";
 }
 
 std::vector<unsigned char> program_binary(const ::cl::Program& program) {
@@ -67,27 +55,38 @@ void save_program_binary(const ::cl::Program& program, const std::filesystem::pa
   write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
-ProgramCache::ProgramCache(std::filesystem::path binary_dir) : binary_dir_(std::move(binary_dir)) {
-  if (binary_dir_.empty()) {
-    if (const char* env = std::getenv(kBinaryDirEnv); env != nullptr) binary_dir_ = env;
+ProgramCache::ProgramCache(std::filesystem::path binary) : binary_location_(std::move(binary)) {
+  for (const char* variable : {kBinaryEnv, kBinaryDirEnv}) {
+    const char* env = std::getenv(variable);
+    if (binary_location_.empty() && env != nullptr && *env != '\0') binary_location_ = env;
   }
 }
 
 bool ProgramCache::uses_binary(const DeviceInfo& info) const {
-  return !info.compiler_available || (!binary_dir_.empty() && info.kind == DeviceKind::kAccelerator);
+  return !info.compiler_available || (!binary_location_.empty() && info.kind == DeviceKind::kAccelerator);
 }
 
 ::cl::Program ProgramCache::get(DeviceContext& device, std::string_view kernel_path, std::string_view options) {
   if (uses_binary(device.info())) {
-    if (binary_dir_.empty()) {
-      throw std::runtime_error(describe(device.info()) + " has no OpenCL compiler: build " +
-                               binary_file_name(kernel_path, device.info()) + " from kernels/" +
-                               std::string(kernel_path) + " with the vendor's offline compiler (aoc, v++) and set " +
-                               kBinaryDirEnv + " to the directory holding it");
+    if (binary_location_.empty()) {
+      throw ClError("loading kernels/" + std::string(kernel_path), CL_COMPILER_NOT_AVAILABLE, __FILE__, __LINE__,
+                    describe(device.info()) + " has no OpenCL compiler: build the board binary with the hw/ flows " +
+                        "(docs/fpga.md) and set " + kBinaryEnv + " to it");
     }
-    return build_binary(device, binary_dir_ / binary_file_name(kernel_path, device.info()), options);
+    const BoardProgram& board = board_program(device);
+    check_options_match_manifest(board.manifest, options);
+    return board.program;
   }
   return build_source(device, kernel_path, resolve_kernel_source(kernel_path), options);
+}
+
+const ProgramCache::BoardProgram& ProgramCache::board_program(DeviceContext& device) {
+  const std::lock_guard<std::mutex> lock(board_mutex_);
+  if (const auto it = boards_.find(device.context()()); it != boards_.end()) return it->second;
+  const std::filesystem::path binary = find_board_binary(binary_location_);
+  BinaryManifest manifest = check_binary_manifest(binary, host_manifest_expectation(device.info()));
+  ::cl::Program program = build_binary(device, binary);
+  return boards_.emplace(device.context()(), BoardProgram{std::move(manifest), std::move(program)}).first->second;
 }
 
 ::cl::Program ProgramCache::build_source(DeviceContext& device, std::string_view name, std::string_view source,

@@ -1,4 +1,4 @@
-// Builds OpenCL programs from embedded sources or precompiled binaries, once per device and source.
+// Builds OpenCL programs from embedded sources once per device and source, or loads the board binary once per device.
 #pragma once
 
 #include <cstdint>
@@ -11,20 +11,21 @@
 #include <utility>
 #include <vector>
 
+#include "host/cl/binary_manifest.h"
 #include "host/cl/device_context.h"
 #include "host/cl/opencl.h"
 
 namespace rfrecon::cl {
 
-// Directory of precompiled kernel binaries (FPGA bitstreams); read when a ProgramCache is made without one.
+// The board's precompiled binary (an FPGA bitstream, .aocx or .xclbin) with its manifest FILE.json beside it; read
+// when a ProgramCache is made without one. Else the directory of $RFRECON_KERNEL_BINARY_DIR, which must hold exactly
+// one binary with a manifest (docs/fpga.md).
+inline constexpr const char* kBinaryEnv = "RFRECON_KERNEL_BINARY";
 inline constexpr const char* kBinaryDirEnv = "RFRECON_KERNEL_BINARY_DIR";
 
 // The lines prepended to every source built for this device: a comment naming it, RF_TARGET_INTEL_FPGA or
 // RF_TARGET_XILINX_FPGA on those boards (kernels/common/target.h), then `#line 1`.
 std::string device_preamble(const DeviceInfo& info);
-
-// "selfcheck/axpy.cl" on an Intel FPGA -> "selfcheck_axpy.aocx"; ".xclbin" on Xilinx; ".bin" elsewhere.
-std::string binary_file_name(std::string_view kernel_path, const DeviceInfo& info);
 
 // The device's program binary, as clGetProgramInfo(CL_PROGRAM_BINARIES) returns it.
 std::vector<unsigned char> program_binary(const ::cl::Program& program);
@@ -34,24 +35,30 @@ void save_program_binary(const ::cl::Program& program, const std::filesystem::pa
 
 class ProgramCache {
  public:
-  // binary_dir: where binaries are looked up; empty means $RFRECON_KERNEL_BINARY_DIR (possibly unset).
-  explicit ProgramCache(std::filesystem::path binary_dir = {});
+  // binary: the board binary, or a directory holding exactly one (find_board_binary); empty means
+  // $RFRECON_KERNEL_BINARY, else $RFRECON_KERNEL_BINARY_DIR (possibly both unset).
+  explicit ProgramCache(std::filesystem::path binary = {});
 
   // The built program for an embedded kernel file. Devices without an online compiler (FPGA boards), and
-  // accelerators when a binary directory is set, load binary_dir/binary_file_name(...); others build the
-  // embedded source after device_preamble(). Throws BuildError with the log when the build fails.
+  // accelerators when a binary is set, get the board binary's program, which serves every kernel file: loaded once
+  // per context after its manifest passed check_binary_manifest (BinaryManifestError otherwise), and `options` must
+  // restate its parameters (check_options_match_manifest). Others build the embedded source after
+  // device_preamble(). Throws ClError when a device needs the binary and none is set, BuildError with the log when
+  // a build fails.
   ::cl::Program get(DeviceContext& device, std::string_view kernel_path, std::string_view options = {});
 
   // Builds OpenCL C text directly (the preamble is prepended); cached by device and source hash.
   ::cl::Program build_source(DeviceContext& device, std::string_view name, std::string_view source,
                              std::string_view options = {});
 
-  // clCreateProgramWithBinary + clBuildProgram from a file; throws std::runtime_error naming an unreadable file.
+  // clCreateProgramWithBinary + clBuildProgram from a file, with no manifest check (get() checks first); throws
+  // std::runtime_error naming an unreadable file.
   ::cl::Program build_binary(DeviceContext& device, const std::filesystem::path& path, std::string_view options = {});
 
-  // True when get() would load a binary for this device rather than build from source.
+  // True when get() would load the board binary for this device rather than build from source.
   bool uses_binary(const DeviceInfo& info) const;
-  const std::filesystem::path& binary_dir() const { return binary_dir_; }
+  // The board binary or its directory, as given or read from the environment; empty when none is set.
+  const std::filesystem::path& binary_location() const { return binary_location_; }
 
   // Number of distinct programs built so far (for tests of the cache).
   std::size_t size() const;
@@ -61,9 +68,18 @@ class ProgramCache {
   ::cl::Program cached_or_built(DeviceContext& device, std::uint64_t hash, std::string_view name,
                                 const std::function<::cl::Program()>& create, std::string_view options);
 
-  std::filesystem::path binary_dir_;
+  struct BoardProgram {
+    BinaryManifest manifest;
+    ::cl::Program program;
+  };
+  // The context's board program, checked and loaded on first use.
+  const BoardProgram& board_program(DeviceContext& device);
+
+  std::filesystem::path binary_location_;
   mutable std::mutex mutex_;
   std::map<Key, ::cl::Program> programs_;
+  std::mutex board_mutex_;  // held while a board binary loads, so each context loads it once
+  std::map<cl_context, BoardProgram> boards_;
 };
 
 }  // namespace rfrecon::cl

@@ -6,6 +6,10 @@
 
 #include <CLI/CLI.hpp>
 
+namespace rfrecon::cl {
+class EntryChoice;
+}  // namespace rfrecon::cl
+
 namespace rfrecon::cli {
 
 // Thrown by a command to end with a specific exit code after it has reported what went wrong.
@@ -24,6 +28,11 @@ CLI::Option* add_devices_option(CLI::App* command, std::string& selection);
 // Adds `--tile-timeout SECONDS` (0, or at least 5) to a subcommand whose kernels run through the scheduler: it sets
 // RFRECON_TILE_TIMEOUT for the process, which every stage reads (docs/scheduler.md).
 void add_tile_timeout_option(CLI::App* command);
+
+// Adds `--entry auto|ndrange|single|LIST` (host/cl/entry_choice.h; default auto) to a subcommand whose kernels have
+// both entries; a word that is none of these is a parse error (exit 2). The list's length is checked against the
+// selected devices by the library call (UsageError, exit 2).
+CLI::Option* add_entry_option(CLI::App* command, cl::EntryChoice& entries);
 
 void add_devices_command(CLI::App& app);
 void add_selfcheck_command(CLI::App& app);

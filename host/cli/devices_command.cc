@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host/cl/device_selection.h"
+#include "host/cl/entry_choice.h"
 #include "host/cl/program_cache.h"
 #include "host/cli/commands.h"
 
@@ -20,8 +21,8 @@ struct DevicesOptions {
 
 std::string program_origin(const cl::ProgramCache& programs, const cl::DeviceInfo& info) {
   if (!programs.uses_binary(info)) return "source";
-  if (programs.binary_dir().empty()) return std::string("binary (set ") + cl::kBinaryDirEnv + ")";
-  return "binary from " + programs.binary_dir().string();
+  if (programs.binary_location().empty()) return std::string("binary (set ") + cl::kBinaryEnv + ")";
+  return "binary from " + programs.binary_location().string();
 }
 
 void run_devices(const DevicesOptions& options) {
@@ -34,6 +35,7 @@ void run_devices(const DevicesOptions& options) {
     for (const auto& entry : shown) {
       nlohmann::json item = entry.info;
       item["programs"] = program_origin(programs, entry.info);
+      item["entry"] = cl::entry_name(cl::preferred_entry(entry.info));
       list.push_back(item);
     }
     std::cout << nlohmann::json{{"devices", list}}.dump(2) << "\n";
@@ -50,7 +52,8 @@ void run_devices(const DevicesOptions& options) {
               << "    local memory:   " << info.local_mem_bytes / 1024 << " KiB\n"
               << "    OpenCL C:       " << info.opencl_c_version << "\n"
               << "    fp64 / fp16:    " << (info.fp64 ? "yes" : "no") << " / " << (info.fp16 ? "yes" : "no") << "\n"
-              << "    programs:       " << program_origin(programs, info) << "\n";
+              << "    programs:       " << program_origin(programs, info) << "\n"
+              << "    entry (auto):   " << cl::entry_name(cl::preferred_entry(info)) << "\n";
   }
 }
 }  // namespace

@@ -1,9 +1,11 @@
-// The `--devices` and `--tile-timeout` options shared by every command that runs kernels.
+// The `--devices`, `--tile-timeout` and `--entry` options shared by the commands that run kernels.
 #include <cmath>
 #include <cstdlib>
 #include <string>
 
+#include "host/cl/entry_choice.h"
 #include "host/cli/commands.h"
+#include "host/core/errors.h"
 #include "host/sched/scheduler.h"
 
 namespace rfrecon::cli {
@@ -44,6 +46,26 @@ CLI::Option* add_devices_option(CLI::App* command, std::string& selection) {
                                                                      : std::string();
           },
           "SEL"));
+}
+
+CLI::Option* add_entry_option(CLI::App* command, cl::EntryChoice& entries) {
+  return command
+      ->add_option_function<std::string>(
+          "--entry", [&entries](const std::string& text) { entries = cl::EntryChoice::parse(text); },
+          "Kernel entry per device: auto (single work-item on FPGA boards, NDRange on CPUs and GPUs), ndrange or "
+          "single for every device, or one of them per selected device, comma-separated in the order of "
+          "`rfrecon devices`")
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            try {
+              cl::EntryChoice::parse(text);
+              return std::string();
+            } catch (const UsageError& error) {
+              return std::string(error.what());
+            }
+          },
+          "auto|ndrange|single|LIST"))
+      ->default_str("auto");
 }
 
 }  // namespace rfrecon::cli

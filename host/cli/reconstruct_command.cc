@@ -13,13 +13,11 @@ struct ReconstructOptions {
   pipeline::ReconstructRequest request;
   std::string method = "fused";
   std::string devices;
-  std::string entry = "ndrange";
 };
 
 void run_reconstruct(ReconstructOptions options) {
   auto& request = options.request;
   request.depth.method = depth::parse_method(options.method);
-  request.depth.entry = options.entry == "single" ? cl::KernelEntry::kSingleWorkItem : cl::KernelEntry::kNdRange;
   auto devices = cl::open_devices(options.devices);
   cl::ProgramCache programs;
   const auto run = pipeline::reconstruct_scan(request, devices, programs);
@@ -48,9 +46,7 @@ void add_reconstruct_command(CLI::App& app) {
   command->add_flag("--force", options->request.force, "Replace an existing output directory");
   add_devices_option(command, options->devices);
   add_tile_timeout_option(command);
-  command->add_option("--entry", options->entry, "Kernel entry: ndrange or single (single work-item, FPGA)")
-      ->check(CLI::IsMember({"ndrange", "single"}))
-      ->capture_default_str();
+  add_entry_option(command, options->request.depth.entries);
   auto& depth = options->request.depth;
   command
       ->add_option("--epipolar-tolerance", depth.rectification.epipolar_tolerance_px,
@@ -60,6 +56,12 @@ void add_reconstruct_command(CLI::App& app) {
   command
       ->add_option("--saturation", depth.rectification.saturation,
                    "Drop pixels with a T entry at or above this (linear, 1 = full scale)")
+      ->check(finite_positive())
+      ->capture_default_str();
+  command
+      ->add_option("--edge-relative", depth.rectification.edge_relative,
+                   "Drop pixels whose direct energy differs from a neighbour's by more than this fraction of their "
+                   "own (albedo and shadow edges bias the correspondence)")
       ->check(finite_positive())
       ->capture_default_str();
   command->add_option("--jump", depth.segmentation.jump_relative, "Relative depth step that ends a run")

@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include "host/cl/device_selection.h"
+#include "host/cl/entry_choice.h"
 #include "host/cli/capture_options.h"
 #include "host/cli/commands.h"
 #include "host/cli/number_checks.h"
@@ -16,17 +17,16 @@ struct TransportOptions {
   pipeline::TransportRequest request;
   CaptureOptions capture;
   std::string devices;
-  std::string entry = "ndrange";
 };
 
 void run_transport(TransportOptions options) {
   auto& request = options.request;
   request.source = capture_source(options.capture);
-  request.entry =
-      options.entry == "single" ? transport::KernelEntry::kSingleWorkItem : transport::KernelEntry::kNdRange;
   auto devices = cl::open_devices(options.devices);
-  for (const auto& device : devices) {
-    spdlog::info("transport: {} on {}", request.capture_dir.string(), cl::describe(device.info()));
+  const auto entries = request.entries.resolve(devices);  // a list of the wrong length: UsageError, exit 2
+  for (std::size_t i = 0; i < devices.size(); ++i) {
+    spdlog::info("transport: {} on {} (entry {})", request.capture_dir.string(), cl::describe(devices[i].info()),
+                 cl::entry_name(entries[i]));
   }
   cl::ProgramCache programs;
   const auto file_run = pipeline::transport_capture(request, devices, programs);
@@ -65,9 +65,7 @@ void add_transport_command(CLI::App& app) {
       ->add_option("--noise-threshold", setup.thresholds.noise,
                    "Transport entries at or below are dropped (default: 2.5 DN at the capture's bit depth)")
       ->check(finite_non_negative());
-  command->add_option("--entry", options->entry, "Kernel entry: ndrange or single (single work-item, FPGA)")
-      ->check(CLI::IsMember({"ndrange", "single"}))
-      ->capture_default_str();
+  add_entry_option(command, options->request.entries);
   command->callback([options] { run_transport(*options); });
 }
 

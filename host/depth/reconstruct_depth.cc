@@ -58,6 +58,7 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
                            const std::string& rig_name, const DepthOptions& options,
                            std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
   if (devices.empty()) throw std::invalid_argument("reconstruct_depth: no device");
+  options.entries.check_device_count(devices.size());
   if (options.method != Method::kTriangulate && transport.setup.dot_spacing == 0) {
     throw InputError("the " + method_name(options.method) +
                      " method needs the dot-grid scan (T's full rows for the primal and dual images), and this "
@@ -84,6 +85,7 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
   summary["correspondences"] = triangulation.correspondences;
   summary["off_epipolar"] = triangulation.off_epipolar;
   summary["boundary_pixels"] = triangulation.boundary_pixels;
+  summary["edge_pixels"] = triangulation.edge_pixels;
   clock.lap("triangulate");
   if (triangulation.correspondences - triangulation.off_epipolar == 0) {
     throw ProcessingError("nothing to reconstruct: no camera pixel has a correspondence on its epipolar line (" +
@@ -95,9 +97,9 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
   cv::Mat z_rect_grid = triangulation.z_rect_mm;
   if (options.method != Method::kTriangulate) {
     std::vector<sched::RunReport> reports;
-    auto primal = transport::primal_on_devices(devices, programs, options.entry, transport,
+    auto primal = transport::primal_on_devices(devices, programs, options.entries, transport,
                                                std::vector<float>(transport.projector_pixels(), 1.0f));
-    auto dual = transport::dual_on_devices(devices, programs, options.entry, transport::transpose(transport),
+    auto dual = transport::dual_on_devices(devices, programs, options.entries, transport::transpose(transport),
                                            std::vector<float>(transport.camera_pixels(), 1.0f));
     reports.push_back(primal.report);
     reports.push_back(dual.report);
@@ -123,11 +125,12 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
     const auto solve_rows = [&](const std::string& stage, const auto& solve) {
       sched::Options tiles;
       tiles.stage = stage;
+      tiles.entries = options.entries;
       reports.push_back(sched::run_tiles(
           devices, static_cast<std::size_t>(rows.height),
           [&](sched::Worker& worker, const sched::Tile& tile) {
             const int first = static_cast<int>(tile.begin), end = static_cast<int>(tile.end);
-            const auto z = solve(worker.device(), first, end);
+            const auto z = solve(worker, first, end);
             worker.deliver([&] {
               std::copy(z.begin(), z.end(), z_rect.begin() + static_cast<std::ptrdiff_t>(first) * rows.width);
             });
@@ -135,15 +138,15 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
           tiles));
       clock.lap(stage);
     };
-    solve_rows("integrate", [&](cl::DeviceContext& device, int first, int end) {
-      return integrate_rows_opencl(device, programs, options.entry, rows, options.integration, first, end);
+    solve_rows("integrate", [&](sched::Worker& worker, int first, int end) {
+      return integrate_rows_opencl(worker.device(), programs, worker.entry(), rows, options.integration, first, end);
     });
     if (options.method == Method::kFused) {
       const std::vector<float> z_integrated = z_rect;
-      solve_rows("fuse", [&](cl::DeviceContext& device, int first, int end) {
+      solve_rows("fuse", [&](sched::Worker& worker, int first, int end) {
         const auto begin = z_integrated.begin() + static_cast<std::ptrdiff_t>(first) * rows.width;
         const std::vector<float> start(begin, begin + static_cast<std::ptrdiff_t>(end - first) * rows.width);
-        return fuse_rows_opencl(device, programs, options.entry, rows, start, options.fusion, first, end);
+        return fuse_rows_opencl(worker.device(), programs, worker.entry(), rows, start, options.fusion, first, end);
       });
     }
     summary["scheduler"] = reports;
@@ -163,7 +166,8 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
     std::string why = std::to_string(triangulation.off_epipolar) + " off their epipolar line by more than " +
                       fmt::format("{:g}", options.rectification.epipolar_tolerance_px) + " px (--epipolar-tolerance; " +
                       "is " + rig_name + " this capture's calibration?), " +
-                      std::to_string(triangulation.boundary_pixels) + " on object boundaries";
+                      std::to_string(triangulation.boundary_pixels) + " on object boundaries, " +
+                      std::to_string(triangulation.edge_pixels) + " on albedo or shadow edges (--edge-relative)";
     if (summary.contains("segmentation")) {
       why += ", " + std::to_string(summary["segmentation"]["usable_pixels"].get<int>()) +
              " usable rectified samples for the integration (others lack primal or dual signal, or saturate: "

@@ -9,6 +9,7 @@
 
 #include "calib/rig.h"
 #include "host/cl/device_context.h"
+#include "host/cl/entry_choice.h"
 #include "host/cl/program_cache.h"
 #include "host/depth/rectification.h"
 #include "host/depth/row_segmentation.h"
@@ -31,7 +32,7 @@ struct DepthOptions {
   SegmentationOptions segmentation;
   IntegrationOptions integration;
   FusionOptions fusion;
-  KernelEntry entry = KernelEntry::kNdRange;
+  cl::EntryChoice entries;  // kernel entry per device (default auto: cl::preferred_entry of each)
 };
 
 struct DepthRun {
@@ -40,7 +41,8 @@ struct DepthRun {
 };
 
 // Throws InputError (sizes of T and rig differ, rig cannot be rectified; `rig_name` names the file) and
-// ProcessingError (nothing left to reconstruct: every pixel masked). Kernels run on `devices` (at least one).
+// ProcessingError (nothing left to reconstruct: every pixel masked), UsageError (before any work) when a per-device
+// options.entries list does not match `devices`. Kernels run on `devices` (at least one), each with its entry.
 DepthRun reconstruct_depth(const transport::CompressedTransport& transport, const calib::StereoRig& rig,
                            const std::string& rig_name, const DepthOptions& options,
                            std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs);

@@ -14,6 +14,7 @@ struct RectificationOptions {
   float epipolar_tolerance_px = 1.0f;  // a correspondence further than this from its rectified row is rejected
   float saturation = 0.97f;            // a pixel with a T entry at or above this (linear, 1 = full scale) is dropped
   float boundary_relative = 0.01f;     // a depth step this large (relative) to a 3x3 neighbour: an occlusion boundary
+  float edge_relative = 0.3f;  // a direct-energy step this large (relative) to a 4-neighbour: an albedo or shadow edge
 };
 
 // The rectification the depth stage works in: calib::rectify_rig, computed from the rig's intrinsics, R and T (the
@@ -41,6 +42,7 @@ struct CameraGridTriangulation {
   int correspondences = 0;  // pixels with a correspondence
   int off_epipolar = 0;     // of them, rejected by the epipolar tolerance (or behind the rig)
   int boundary_pixels = 0;  // of the others, rejected on both sides of occlusion boundaries
+  int edge_pixels = 0;      // of the others, rejected on albedo, shadow and silhouette edges (biased centroids)
 };
 
 // Throws InputError when T's camera or projector size differs from the rig's.

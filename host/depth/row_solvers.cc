@@ -5,8 +5,11 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "host/cl/kernel_launch.h"
+#include "host/core/errors.h"
+#include "kernels/common/params.h"
 #include "kernels/depth/row_fusion.h"
 #include "kernels/depth/row_integration.h"
 
@@ -32,6 +35,17 @@ void check_options(const IntegrationOptions& options) {
 void check_options(const FusionOptions& options) {
   if (options.iterations < 1 || !(options.sigma_disparity_px > 0.0f) || !(options.sigma_step_mm > 0.0f)) {
     throw std::invalid_argument("fusion: iterations must be >= 1 and both sigmas > 0");
+  }
+}
+
+// The single work-item entries hold rows in on-chip buffers of RF_MAX_ROW_WIDTH pixels (kernels/common/params.h).
+void check_entry_width(const RectifiedRows& rows, KernelEntry entry) {
+  if (entry == KernelEntry::kSingleWorkItem && (rows.width > RF_MAX_ROW_WIDTH || rows.proj_width > RF_MAX_ROW_WIDTH)) {
+    throw ProcessingError("rectified rows of " + std::to_string(rows.width) + " camera and " +
+                          std::to_string(rows.proj_width) +
+                          " projector pixels exceed RF_MAX_ROW_WIDTH = " + std::to_string(RF_MAX_ROW_WIDTH) +
+                          " of the single work-item depth kernels: run them as NDRange or rebuild the kernels "
+                          "with a larger -DRF_MAX_ROW_WIDTH");
   }
 }
 
@@ -110,15 +124,17 @@ std::vector<float> fuse_rows_reference(const RectifiedRows& rows, const std::vec
 
 std::vector<float> integrate_rows_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
                                          const RectifiedRows& rows, const IntegrationOptions& options, int row_begin,
-                                         int row_end) {
+                                         int row_end, std::string_view build_options) {
   check_range(rows, row_begin, row_end);
   check_options(options);
+  check_entry_width(rows, entry);
   const RowBuffers inputs(device, rows, row_begin, row_end);
   // z also holds each run's seed between passes. It starts defined (NaN) because the compiler may load z and z_tri
   // both before choosing the seed of the first pass (oclgrind reports that load otherwise).
   const std::vector<float> z(offset(rows, row_end) - offset(rows, row_begin), std::numeric_limits<float>::quiet_NaN());
   const ::cl::Buffer z_buffer = cl::upload(device.context(), z, CL_MEM_READ_WRITE);
-  ::cl::Kernel kernel = cl::make_kernel(programs.get(device, "depth/integrate.cl"), "integrate_rows", entry);
+  ::cl::Kernel kernel =
+      cl::make_kernel(programs.get(device, "depth/integrate.cl", build_options), "integrate_rows", entry);
   run_rows(device, kernel, entry, rows, row_begin, row_end, options.passes, inputs.e_cam, inputs.e_proj, inputs.z_tri,
            inputs.runs, z_buffer);
   return cl::download<float>(device.queue(), z_buffer, z.size());
@@ -126,18 +142,26 @@ std::vector<float> integrate_rows_opencl(cl::DeviceContext& device, cl::ProgramC
 
 std::vector<float> fuse_rows_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
                                     const RectifiedRows& rows, const std::vector<float>& z_start,
-                                    const FusionOptions& options, int row_begin, int row_end) {
+                                    const FusionOptions& options, int row_begin, int row_end,
+                                    std::string_view build_options) {
   std::vector<float> z = checked_fusion_start(rows, z_start, options, row_begin, row_end);
+  check_entry_width(rows, entry);
   const RowBuffers inputs(device, rows, row_begin, row_end);
   const ::cl::Buffer z_buffer = cl::upload(device.context(), z, CL_MEM_READ_WRITE);
-  // Scratch of the Thomas sweeps, zeroed from the host: every element is written before it is read, but oclgrind
-  // follows speculative loads and does not count clEnqueueFillBuffer as initialisation.
-  const std::vector<float> zeros(z.size(), 0.0f);
-  const ::cl::Buffer c_buffer = cl::upload(device.context(), zeros, CL_MEM_READ_WRITE);
-  const ::cl::Buffer d_buffer = cl::upload(device.context(), zeros, CL_MEM_READ_WRITE);
-  ::cl::Kernel kernel = cl::make_kernel(programs.get(device, "depth/fuse.cl"), "fuse_rows", entry);
-  run_rows(device, kernel, entry, rows, row_begin, row_end, options.iterations, options.sigma_disparity_px,
-           options.sigma_step_mm, inputs.e_cam, inputs.e_proj, inputs.z_tri, inputs.runs, z_buffer, c_buffer, d_buffer);
+  ::cl::Kernel kernel = cl::make_kernel(programs.get(device, "depth/fuse.cl", build_options), "fuse_rows", entry);
+  if (entry == KernelEntry::kSingleWorkItem) {  // its scratch is on chip
+    run_rows(device, kernel, entry, rows, row_begin, row_end, options.iterations, options.sigma_disparity_px,
+             options.sigma_step_mm, inputs.e_cam, inputs.e_proj, inputs.z_tri, inputs.runs, z_buffer);
+  } else {
+    // Scratch of the Thomas sweeps, zeroed from the host: every element is written before it is read, but oclgrind
+    // follows speculative loads and does not count clEnqueueFillBuffer as initialisation.
+    const std::vector<float> zeros(z.size(), 0.0f);
+    const ::cl::Buffer c_buffer = cl::upload(device.context(), zeros, CL_MEM_READ_WRITE);
+    const ::cl::Buffer d_buffer = cl::upload(device.context(), zeros, CL_MEM_READ_WRITE);
+    run_rows(device, kernel, entry, rows, row_begin, row_end, options.iterations, options.sigma_disparity_px,
+             options.sigma_step_mm, inputs.e_cam, inputs.e_proj, inputs.z_tri, inputs.runs, z_buffer, c_buffer,
+             d_buffer);
+  }
   cl::read_buffer(device.queue(), z_buffer, z.data(), z.size());
   return z;
 }

@@ -4,6 +4,7 @@
 // rectified camera frame, NaN where masked), so a scheduler can split the rows over devices.
 #pragma once
 
+#include <string_view>
 #include <vector>
 
 #include "host/cl/device_context.h"
@@ -32,11 +33,15 @@ std::vector<float> integrate_rows_reference(const RectifiedRows& rows, const Int
 std::vector<float> fuse_rows_reference(const RectifiedRows& rows, const std::vector<float>& z_start,
                                        const FusionOptions& options, int row_begin, int row_end);
 
+// The kernels of `entry` on one device. The single work-item entries take rows of at most RF_MAX_ROW_WIDTH pixels
+// (kernels/common/params.h) and throw ProcessingError on wider ones. build_options are added to the program's
+// build (the FPGA target macros on PoCL, for the tests that compare the entries).
 std::vector<float> integrate_rows_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
                                          const RectifiedRows& rows, const IntegrationOptions& options, int row_begin,
-                                         int row_end);
+                                         int row_end, std::string_view build_options = {});
 std::vector<float> fuse_rows_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
                                     const RectifiedRows& rows, const std::vector<float>& z_start,
-                                    const FusionOptions& options, int row_begin, int row_end);
+                                    const FusionOptions& options, int row_begin, int row_end,
+                                    std::string_view build_options = {});
 
 }  // namespace rfrecon::depth

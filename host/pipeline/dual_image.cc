@@ -58,17 +58,17 @@ DualImageRun dual_image(const DualImageRequest& request, std::vector<cl::DeviceC
   if (!request.summary.empty()) check_output_file(summary_output, {request.transport});
   check_distinct_outputs({output, summary_output});
   const auto transport = transport::read_transport(request.transport);
-  const auto entry = transport::KernelEntry::kNdRange;
+  const cl::EntryChoice entries;  // auto: each device on the entry that suits it
   DualImageRun run;
   StageClock clock;
   clock.time("kernels", [&] {
     if (request.primal) {
       run.size = transport.setup.camera_size;
-      run.product = transport::primal_on_devices(devices, programs, entry, transport,
+      run.product = transport::primal_on_devices(devices, programs, entries, transport,
                                                  std::vector<float>(transport.projector_pixels(), 1.0f));
     } else {
       run.size = transport.setup.projector_size;
-      run.product = transport::dual_on_devices(devices, programs, entry, transport::transpose(transport),
+      run.product = transport::dual_on_devices(devices, programs, entries, transport::transpose(transport),
                                                std::vector<float>(transport.camera_pixels(), 1.0f));
     }
   });

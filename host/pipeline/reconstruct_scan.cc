@@ -12,11 +12,15 @@ namespace rfrecon::pipeline {
 
 ReconstructRun reconstruct_scan(const ReconstructRequest& request, std::vector<cl::DeviceContext>& devices,
                                 cl::ProgramCache& programs) {
+  const auto entries = request.depth.entries.resolve(devices);  // a list of the wrong length: UsageError
   check_output_directory({request.out_dir, "--output", request.force}, {request.transport, request.rig});
   const auto transport = transport::read_transport(request.transport);
   const auto rig = calib::read_rig(request.rig);
-  spdlog::info("reconstruct: {} from {} with {} on {}", depth::method_name(request.depth.method),
-               request.transport.string(), request.rig.string(), cl::describe(devices.front().info()));
+  spdlog::info("reconstruct: {} from {} with {}", depth::method_name(request.depth.method), request.transport.string(),
+               request.rig.string());
+  for (std::size_t i = 0; i < devices.size(); ++i) {
+    spdlog::info("reconstruct: on {} (entry {})", cl::describe(devices[i].info()), cl::entry_name(entries[i]));
+  }
   ReconstructRun run;
   run.camera_pixels = transport.setup.camera_size.area();
   run.depth = depth::reconstruct_depth(transport, rig, request.rig.string(), request.depth, devices, programs);

@@ -22,8 +22,9 @@ struct ReconstructRun {
 };
 
 // Throws UsageError before any work when out_dir is not a directory, holds an input, or is not empty without
-// force; InputError naming the file (bad T.h5 or rig, sizes that differ, a rig that cannot be rectified) and
-// ProcessingError when nothing can be reconstructed; out_dir is then untouched.
+// force, or when a per-device depth.entries list does not have one entry per device; InputError naming the file (bad
+// T.h5 or rig, sizes that differ, a rig that cannot be rectified) and ProcessingError when nothing can be
+// reconstructed; out_dir is then untouched.
 ReconstructRun reconstruct_scan(const ReconstructRequest& request, std::vector<cl::DeviceContext>& devices,
                                 cl::ProgramCache& programs);
 

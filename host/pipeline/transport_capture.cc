@@ -17,6 +17,7 @@ namespace rfrecon::pipeline {
 
 TransportFileRun transport_capture(const TransportRequest& request, std::vector<cl::DeviceContext>& devices,
                                    cl::ProgramCache& programs) {
+  request.entries.check_device_count(devices.size());
   const auto manifest = transport::open_capture(request.capture_dir, request.source.layout,
                                                 request.source.projector_size, request.source.frame_paths);
   const auto inputs = capture::capture_files(request.capture_dir, manifest);
@@ -32,7 +33,7 @@ TransportFileRun transport_capture(const TransportRequest& request, std::vector<
                    " camera with K = " + std::to_string(request.setup.entries_per_pixel));
   TransportFileRun file_run;
   file_run.run = transport::compute_transport_on_devices(request.capture_dir, manifest, request.setup, devices,
-                                                         programs, request.entry);
+                                                         programs, request.entries);
   for (const auto flags : file_run.run.transport.flags) {
     file_run.decoded_pixels += (flags & transport::kFlagValid) != 0 ? 1 : 0;
   }

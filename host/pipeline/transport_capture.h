@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "host/cl/entry_choice.h"
 #include "host/transport/capture_views.h"
 #include "host/transport/compute_transport.h"
 
@@ -13,10 +14,10 @@ struct TransportRequest {
   std::filesystem::path capture_dir;
   transport::CaptureSource source;
   transport::TransportSetup setup;  // K and thresholds
-  transport::KernelEntry entry = transport::KernelEntry::kNdRange;
-  std::filesystem::path output;   // T.h5, written atomically
-  std::filesystem::path summary;  // optional JSON of timings and shares
-  bool force = false;             // replace existing output and summary files
+  cl::EntryChoice entries;          // kernel entry per device (default auto: cl::preferred_entry of each)
+  std::filesystem::path output;     // T.h5, written atomically
+  std::filesystem::path summary;    // optional JSON of timings and shares
+  bool force = false;               // replace existing output and summary files
 };
 
 struct TransportFileRun {
@@ -27,9 +28,9 @@ struct TransportFileRun {
 
 // Decodes and compresses the capture on `devices` and writes T.h5 (and the summary), both renamed into place only
 // once both are written. Throws UsageError (before any work) for an output that check_output_file refuses (an input
-// of the capture, a device, an existing file without force), InputError for a bad capture (naming the file),
-// ProcessingError when no pixel decodes, OutputError when an output cannot be written, and
-// sched::AllDevicesFailed when no device is left.
+// of the capture, a device, an existing file without force) and for a per-device entry list whose length is not the
+// device count, InputError for a bad capture (naming the file), ProcessingError when no pixel decodes, OutputError
+// when an output cannot be written, and sched::AllDevicesFailed when no device is left.
 TransportFileRun transport_capture(const TransportRequest& request, std::vector<cl::DeviceContext>& devices,
                                    cl::ProgramCache& programs);
 

@@ -36,7 +36,8 @@ class BlockRunner::State : public std::enable_shared_from_this<State> {
         current_(devices.size()),
         failed_(devices.size(), false),
         started_(devices.size(), 0) {
-    for (std::size_t i = 0; i < devices.size(); ++i) workers_.emplace_back(devices[i], i, &watchdog_);
+    const std::vector<cl::KernelEntry> entries = options_.entries.resolve(devices);
+    for (std::size_t i = 0; i < devices.size(); ++i) workers_.emplace_back(devices[i], i, entries[i], &watchdog_);
     // Each device starts with one block (so every device takes part even when one starts late); the rest are
     // first-touch.
     for (std::size_t b = 0; b < std::min(blocks_.size(), devices.size()); ++b) owner_[b] = b;
@@ -175,7 +176,9 @@ void BlockRunner::State::work_on(std::size_t position, std::size_t step) {
 void BlockRunner::State::run_step(std::size_t step, const std::string& stage) {
   report_ = RunReport();
   report_.stage = stage;
-  for (auto& device : devices_) report_.devices.push_back({cl::describe(device.info())});
+  for (auto& worker : workers_) {
+    report_.devices.push_back({cl::describe(worker.device().info()), cl::entry_name(worker.entry())});
+  }
   const auto start = std::chrono::steady_clock::now();
   if (!prepared_) {
     prepared_ = true;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "host/cl/device_context.h"
+#include "host/cl/entry_choice.h"
 #include "host/sched/fault.h"
 #include "host/sched/report.h"
 #include "host/sched/scheduler.h"
@@ -42,6 +43,7 @@ struct BlockOptions {
   FaultPolicy faults = FaultPolicy::from_environment();  // counts block-steps per device
   // Per call into the task (prepare, create, one step of one block, each replayed step alone); 0: none.
   double tile_timeout_s = tile_timeout_from_environment();
+  cl::EntryChoice entries;  // each device's kernel entry (Worker::entry), as in Options::entries
 };
 
 class BlockRunner {

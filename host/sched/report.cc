@@ -16,6 +16,7 @@ void RunReport::merge(const RunReport& other) {
     auto& mine = devices[i];
     const auto& theirs = other.devices[i];
     mine.device = theirs.device;
+    mine.entry = theirs.entry;
     mine.tiles += theirs.tiles;
     mine.items += theirs.items;
     mine.replayed_items += theirs.replayed_items;
@@ -34,6 +35,7 @@ void RunReport::update_shares() {
 
 void to_json(nlohmann::json& json, const DeviceShare& share) {
   json = {{"device", share.device},
+          {"entry", share.entry},
           {"tiles", share.tiles},
           {"items", share.items},
           {"share", share.share},
@@ -62,17 +64,17 @@ void to_json(nlohmann::json& json, const RunReport& report) {
 std::vector<std::string> format_table(const std::vector<RunReport>& reports) {
   std::vector<std::string> lines;
   char line[512];
-  std::snprintf(line, sizeof line, "%-10s %9s  %-40s %6s %7s %12s", "stage", "seconds", "device", "tiles", "share",
-                "items/s");
+  std::snprintf(line, sizeof line, "%-10s %9s  %-40s %-7s %6s %7s %12s", "stage", "seconds", "device", "entry", "tiles",
+                "share", "items/s");
   lines.emplace_back(line);
   for (const auto& report : reports) {
     for (std::size_t i = 0; i < report.devices.size(); ++i) {
       const auto& device = report.devices[i];
       char seconds[32] = "";
       if (i == 0) std::snprintf(seconds, sizeof seconds, "%.3f", report.seconds);
-      std::snprintf(line, sizeof line, "%-10s %9s  %-40.40s %6zu %6.1f%% %12.4g%s", i == 0 ? report.stage.c_str() : "",
-                    seconds, device.device.c_str(), device.tiles, 100.0 * device.share, device.items_per_second(),
-                    device.failed ? "  FAILED" : "");
+      std::snprintf(line, sizeof line, "%-10s %9s  %-40.40s %-7s %6zu %6.1f%% %12.4g%s",
+                    i == 0 ? report.stage.c_str() : "", seconds, device.device.c_str(), device.entry.c_str(),
+                    device.tiles, 100.0 * device.share, device.items_per_second(), device.failed ? "  FAILED" : "");
       lines.emplace_back(line);
     }
   }

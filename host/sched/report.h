@@ -11,6 +11,7 @@ namespace rfrecon::sched {
 
 struct DeviceShare {
   std::string device;  // cl::describe() of the device
+  std::string entry;   // the kernel entry it ran: "ndrange" or "single" (cl::entry_name)
   std::size_t tiles = 0;
   std::size_t items = 0;           // items (pixels, rows) whose results this device delivered
   std::size_t replayed_items = 0;  // items it recomputed to rebuild state moved from a failed device (transport)
@@ -42,15 +43,15 @@ struct RunReport {
   void update_shares();
 };
 
-// {"stage", "items", "seconds", "devices": [{"device", "tiles", "items", "share", "items_per_second",
+// {"stage", "items", "seconds", "devices": [{"device", "entry", "tiles", "items", "share", "items_per_second",
 // "busy_seconds", "replayed_items", "failed"}], "failures": [{"device", "device_name", "tile": [begin, end],
 // "error", "timed_out"}]}
 void to_json(nlohmann::json& json, const DeviceShare& share);
 void to_json(nlohmann::json& json, const DeviceFailure& failure);
 void to_json(nlohmann::json& json, const RunReport& report);
 
-// A fixed-width table, one line per stage and device: stage, seconds, device, tiles, share, items/s; then one line
-// per failure. Lines without a trailing newline, for spdlog or printf.
+// A fixed-width table, one line per stage and device: stage, seconds, device, entry, tiles, share, items/s; then one
+// line per failure. Lines without a trailing newline, for spdlog or printf.
 std::vector<std::string> format_table(const std::vector<RunReport>& reports);
 
 // Logs format_table(reports) at info level, failures as warnings.

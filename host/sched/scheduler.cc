@@ -130,10 +130,13 @@ class TileRun : public std::enable_shared_from_this<TileRun> {
         options_(std::move(options)),
         queue_(items, devices.size()),
         live_(devices.size()),
+        entries_(options_.entries.resolve(devices)),
         watchdog_(devices, options_.tile_timeout_s) {
     report_.stage = options_.stage;
     report_.items = items;
-    for (auto& device : devices) report_.devices.push_back({cl::describe(device.info())});
+    for (std::size_t i = 0; i < devices.size(); ++i) {
+      report_.devices.push_back({cl::describe(devices[i].info()), cl::entry_name(entries_[i])});
+    }
   }
 
   RunReport run() {
@@ -197,7 +200,7 @@ class TileRun : public std::enable_shared_from_this<TileRun> {
   void work_on(std::size_t position) {
     DeviceShare& share = report_.devices[position];
     try {
-      Worker worker(devices_[position], position, &watchdog_);
+      Worker worker(devices_[position], position, entries_[position], &watchdog_);
       if (work_.prepare) watchdog_.call(position, [&] { work_.prepare(worker); });
       Tile current;
       Tile next;
@@ -250,6 +253,7 @@ class TileRun : public std::enable_shared_from_this<TileRun> {
   Options options_;
   TileQueue queue_;
   std::atomic<std::size_t> live_;
+  std::vector<cl::KernelEntry> entries_;  // per device
   Watchdog watchdog_;
   std::mutex report_mutex_;
   RunReport report_;

@@ -20,6 +20,11 @@
 // results. The scheduler uploads tile i+1 before computing tile i. Per-device state: index a vector by
 // w.position(). split_rows() cuts N rows into fixed blocks when a stage needs a static split.
 //
+// Kernel entries are per device: Options::entries (cl::EntryChoice: auto by default, FPGA boards on single
+// work-item entries and CPUs and GPUs on NDRange; or one entry forced; or one per device) gives each worker its
+// w.entry(), which the stage passes to cl::make_kernel and cl::enqueue_kernel; the report names it per device. A
+// per-device list whose length differs from the device count throws UsageError before any work.
+//
 // Guarantees: every item is computed exactly once in the delivered output (a tile is redone whole when its device
 // failed before delivering), so results never depend on the split when the kernel computes each item alone.
 // A cl::ClError from prepare/upload/compute marks that device failed (logged, recorded in the report) and its
@@ -40,6 +45,7 @@
 #include <vector>
 
 #include "host/cl/device_context.h"
+#include "host/cl/entry_choice.h"
 #include "host/cl/error.h"
 #include "host/sched/fault.h"
 #include "host/sched/report.h"
@@ -66,6 +72,7 @@ struct Options {
   std::size_t max_tile_items = 0;     // 0: no cap
   FaultPolicy faults = FaultPolicy::from_environment();
   double tile_timeout_s = tile_timeout_from_environment();  // per call into the stage; 0: none
+  cl::EntryChoice entries;  // each device's kernel entry (Worker::entry); default: cl::preferred_entry per device
 };
 
 using TileFn = std::function<void(Worker&, const Tile&)>;

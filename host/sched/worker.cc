@@ -5,8 +5,8 @@
 
 namespace rfrecon::sched {
 
-Worker::Worker(cl::DeviceContext& device, std::size_t position, Watchdog* watchdog)
-    : device_(device), position_(position), watchdog_(watchdog) {}
+Worker::Worker(cl::DeviceContext& device, std::size_t position, cl::KernelEntry entry, Watchdog* watchdog)
+    : device_(device), position_(position), entry_(entry), watchdog_(watchdog) {}
 
 ::cl::CommandQueue& Worker::transfer_queue() {
   if (transfer_() == nullptr) {

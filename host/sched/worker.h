@@ -1,5 +1,6 @@
 // One device as the scheduler drives it: the device's compute queue, a second queue for uploads, the events that say
-// when each of its two input buffer sets has arrived (double buffering), and the fenced delivery of results.
+// when each of its two input buffer sets has arrived (double buffering), the kernel entry it runs, and the fenced
+// delivery of results.
 #pragma once
 
 #include <cstddef>
@@ -7,6 +8,7 @@
 #include <vector>
 
 #include "host/cl/device_context.h"
+#include "host/cl/kernel_entry.h"
 #include "host/cl/opencl.h"
 #include "host/sched/watchdog.h"
 
@@ -14,12 +16,15 @@ namespace rfrecon::sched {
 
 class Worker {
  public:
-  // watchdog: the one timing this worker's calls (Worker::deliver asks it); none: deliver always copies.
-  Worker(cl::DeviceContext& device, std::size_t position, Watchdog* watchdog = nullptr);
+  // entry: the kernel entry of this device (Options::entries resolved for it). watchdog: the one timing this worker's
+  // calls (Worker::deliver asks it); none: deliver always copies.
+  Worker(cl::DeviceContext& device, std::size_t position, cl::KernelEntry entry, Watchdog* watchdog = nullptr);
 
   cl::DeviceContext& device() { return device_; }
   // Index of the device in the list given to the scheduler (stable across a run; reports and faults use it).
   std::size_t position() const { return position_; }
+  // The entry the stage's kernels use on this device (cl::make_kernel, cl::enqueue_kernel).
+  cl::KernelEntry entry() const { return entry_; }
   // The device's in-order queue: kernels and result reads.
   ::cl::CommandQueue& queue() { return device_.queue(); }
   // A second in-order queue on the same context for input writes, so they overlap the kernel of the other slot.
@@ -39,6 +44,7 @@ class Worker {
  private:
   cl::DeviceContext& device_;
   std::size_t position_;
+  cl::KernelEntry entry_;
   Watchdog* watchdog_;
   ::cl::CommandQueue transfer_;
   std::vector<::cl::Event> ready_[2];

@@ -13,13 +13,12 @@ CaptureViews view_capture(const std::filesystem::path& capture_dir, const Captur
   CaptureViews views;
   const auto manifest = open_capture(capture_dir, source.layout, source.projector_size, source.frame_paths);
   TransportSetup setup;
-  setup.entries_per_pixel = 8;
   // The board's dark squares (albedo about 0.05) read below the default black threshold and would count as shadow:
   // without T entries, T^T 1 would have them speckled and partly unreached, and filling those gaps pulls bright
   // values into the dark tips at every corner (0.095 px RMS projector corner error on checkerboard-poses, against
   // 0.029 px with every board pixel lit). A board pose has no shadow to reject: lit means above the noise.
   setup.thresholds.black = default_noise_threshold(manifest.bit_depth);
-  const auto run = compute_transport_on_devices(capture_dir, manifest, setup, devices, programs, KernelEntry::kNdRange);
+  const auto run = compute_transport_on_devices(capture_dir, manifest, setup, devices, programs, cl::EntryChoice());
   views.schedule = run.schedule;
   const auto& transport = run.transport;
 
@@ -32,7 +31,7 @@ CaptureViews view_capture(const std::filesystem::path& capture_dir, const Captur
   }
   const std::vector<float> ones(transport.camera_pixels(), 1.0f);
   const auto transposed = transpose(transport);
-  auto product = dual_on_devices(devices, programs, KernelEntry::kNdRange, transposed, ones);
+  auto product = dual_on_devices(devices, programs, cl::EntryChoice(), transposed, ones);
   views.schedule.push_back(product.report);
   views.dual_image = cv::Mat(transport.setup.projector_size, CV_32F, product.image.data()).clone();
   views.dual_reached = cv::Mat(transport.setup.projector_size, CV_8U);

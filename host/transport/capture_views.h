@@ -32,8 +32,8 @@ struct CaptureViews {
 };
 
 // Builds T for the capture in `capture_dir` on `devices` (K = 8, default thresholds but a black threshold at the noise
-// level, so the board's dark squares are lit), forms T^T 1 and reads the white frame. Input errors (missing frames, bad
-// manifest) throw InputError.
+// level, so the board's dark squares are lit), forms T^T 1 and reads the white frame; each device runs the kernel
+// entry that suits it (cl::preferred_entry). Input errors (missing frames, bad manifest) throw InputError.
 CaptureViews view_capture(const std::filesystem::path& capture_dir, const CaptureSource& source,
                           std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs);
 

@@ -174,13 +174,12 @@ class SubpixelGray {
 class TransportBlocks final : public sched::BlockTask {
  public:
   TransportBlocks(const fs::path& capture_dir, const OpenedCapture& capture, const std::vector<Step>& steps,
-                  const std::vector<sched::Tile>& blocks, cl::ProgramCache& programs, KernelEntry entry)
+                  const std::vector<sched::Tile>& blocks, cl::ProgramCache& programs)
       : capture_dir_(capture_dir),
         capture_(capture),
         steps_(steps),
         blocks_(blocks),
         programs_(programs),
-        entry_(entry),
         accumulators_(blocks.size()),
         results_(blocks.size()) {}
 
@@ -195,7 +194,7 @@ class TransportBlocks final : public sched::BlockTask {
   void create(sched::Worker& worker, std::size_t block) override {
     TransportSetup setup = capture_.setup;
     setup.camera_size.height = static_cast<int>(blocks_[block].size());
-    accumulators_[block] = make_device_accumulator(setup, worker.device(), programs_, entry_);
+    accumulators_[block] = make_device_accumulator(setup, worker.device(), programs_, worker.entry());
   }
 
   void step(sched::Worker& worker, std::size_t block, std::size_t index, bool replay) override {
@@ -245,7 +244,6 @@ class TransportBlocks final : public sched::BlockTask {
   const std::vector<Step>& steps_;
   const std::vector<sched::Tile>& blocks_;
   cl::ProgramCache& programs_;
-  KernelEntry entry_;
   std::vector<cv::Mat> frames_;  // the current step's frames
   std::vector<std::shared_ptr<TransportAccumulator>> accumulators_;
   std::vector<CompressedTransport> results_;
@@ -283,7 +281,8 @@ TransportRun compute_transport(const fs::path& capture_dir, capture::CaptureMani
 
 TransportRun compute_transport_on_devices(const fs::path& capture_dir, capture::CaptureManifest manifest,
                                           TransportSetup setup, std::vector<cl::DeviceContext>& devices,
-                                          cl::ProgramCache& programs, KernelEntry entry) {
+                                          cl::ProgramCache& programs, const cl::EntryChoice& entries) {
+  entries.check_device_count(devices.size());
   StageClock clock;
   Progress progress("transport", manifest.frames.size(), "frames");
   const auto load = [&](const capture::CaptureManifest& with_size, std::size_t i) {
@@ -298,8 +297,11 @@ TransportRun compute_transport_on_devices(const fs::path& capture_dir, capture::
   const auto rows = static_cast<std::size_t>(capture.setup.camera_size.height);
   const std::vector<sched::Tile> blocks =
       sched::split_rows(rows, devices.size() == 1 ? 1 : kBlocksPerDevice * devices.size());
-  TransportBlocks task(capture_dir, capture, steps, blocks, programs, entry);
-  sched::BlockRunner runner(devices, blocks, task, {static_cast<std::size_t>(capture.setup.camera_size.width)});
+  TransportBlocks task(capture_dir, capture, steps, blocks, programs);
+  sched::BlockOptions options;
+  options.items_per_row = static_cast<std::size_t>(capture.setup.camera_size.width);
+  options.entries = entries;
+  sched::BlockRunner runner(devices, blocks, task, options);
 
   // Frames of step i + 1 are read on another thread while the devices work on step i.
   const auto read_step = [&](std::size_t i) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "host/capture/manifest.h"
+#include "host/cl/entry_choice.h"
 #include "host/core/stage_clock.h"
 #include "host/sched/report.h"
 #include "host/transport/accumulator.h"
@@ -45,9 +46,11 @@ inline constexpr int kBlocksPerDevice = 4;
 // per-pixel state on the device that first took it, every frame read once and fed to all blocks. The next frames
 // are read while the devices work on the current ones. When a device fails, its blocks are rebuilt on the others
 // by re-reading the earlier frames; only when all fail does it throw (sched::AllDevicesFailed). The kernels are
-// per pixel, so the result equals the single-device result bit for bit.
+// per pixel, so with one entry on every device the result equals the single-device result bit for bit. `entries`
+// gives each device its kernel entry (auto: cl::preferred_entry); a per-device list of the wrong length throws
+// UsageError before any frame is read.
 TransportRun compute_transport_on_devices(const std::filesystem::path& capture_dir, capture::CaptureManifest manifest,
                                           TransportSetup setup, std::vector<cl::DeviceContext>& devices,
-                                          cl::ProgramCache& programs, KernelEntry entry);
+                                          cl::ProgramCache& programs, const cl::EntryChoice& entries = {});
 
 }  // namespace rfrecon::transport

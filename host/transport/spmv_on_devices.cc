@@ -33,31 +33,32 @@ struct DeviceState {
   std::vector<std::int32_t> rebased[2];  // dual: host copy of the rebased row starts while they upload
 };
 
-void prepare(sched::Worker& worker, DeviceState& state, cl::ProgramCache& programs, cl::KernelEntry entry,
-             const char* name, const std::vector<float>& light) {
-  state.kernel = cl::make_kernel(programs.get(worker.device(), "transport/spmv.cl"), name, entry);
+void prepare(sched::Worker& worker, DeviceState& state, cl::ProgramCache& programs, const char* name,
+             const std::vector<float>& light) {
+  state.kernel = cl::make_kernel(programs.get(worker.device(), "transport/spmv.cl"), name, worker.entry());
   state.light = cl::upload(worker.device().context(), light);
 }
 
 // Sets the arguments, runs the kernel after the slot's uploads, reads the tile's pixels and delivers them to `image`.
 template <typename... Args>
-void run_tile(sched::Worker& worker, DeviceState& state, cl::KernelEntry entry, const sched::Tile& tile, int slot,
-              std::vector<float>& image, const Args&... args) {
+void run_tile(sched::Worker& worker, DeviceState& state, const sched::Tile& tile, int slot, std::vector<float>& image,
+              const Args&... args) {
   const ::cl::Buffer& output =
       state.output[slot].at_least(worker.device().context(), tile.size() * sizeof(float), CL_MEM_WRITE_ONLY);
   cl::set_args(state.kernel, args..., state.light, output, static_cast<cl_uint>(tile.size()));
   // A fixed work-group size, the global size rounded up to it (the kernels skip ids >= n): tiles of many sizes
   // would otherwise make PoCL compile the kernel again for every work-group size it picks.
   const std::size_t group = std::min<std::size_t>(kWorkGroup, worker.device().info().max_work_group_size);
-  cl::enqueue_kernel(worker.queue(), state.kernel, entry, tile.size(), {group, &worker.inputs_ready(slot)});
+  cl::enqueue_kernel(worker.queue(), state.kernel, worker.entry(), tile.size(), {group, &worker.inputs_ready(slot)});
   const auto pixels = cl::download<float>(worker.queue(), output, tile.size());
   worker.deliver(
       [&] { std::copy(pixels.begin(), pixels.end(), image.begin() + static_cast<std::ptrdiff_t>(tile.begin)); });
 }
 
-ProductRun run_product(std::vector<cl::DeviceContext>& devices, std::size_t pixels, sched::Options& options,
-                       const char* stage, sched::TileWork& work, std::vector<float>& image) {
+ProductRun run_product(std::vector<cl::DeviceContext>& devices, std::size_t pixels, const cl::EntryChoice& entries,
+                       sched::Options& options, const char* stage, sched::TileWork& work, std::vector<float>& image) {
   if (options.stage == sched::Options().stage) options.stage = stage;
+  options.entries = entries;
   if (options.granularity == 0) options.granularity = kGranularity;
   ProductRun run;
   run.report = sched::run_tiles(devices, pixels, work, options);
@@ -67,9 +68,9 @@ ProductRun run_product(std::vector<cl::DeviceContext>& devices, std::size_t pixe
 
 }  // namespace
 
-ProductRun primal_on_devices(std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs, cl::KernelEntry entry,
-                             const transport::CompressedTransport& transport, const std::vector<float>& light_p,
-                             sched::Options options) {
+ProductRun primal_on_devices(std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs,
+                             const cl::EntryChoice& entries, const transport::CompressedTransport& transport,
+                             const std::vector<float>& light_p, sched::Options options) {
   if (light_p.size() != transport.projector_pixels()) {
     throw std::invalid_argument("primal: light has " + std::to_string(light_p.size()) + " values, expected " +
                                 std::to_string(transport.projector_pixels()));
@@ -79,7 +80,7 @@ ProductRun primal_on_devices(std::vector<cl::DeviceContext>& devices, cl::Progra
   std::vector<DeviceState> states(devices.size());
   sched::TileWork work;
   work.prepare = [&](sched::Worker& worker) {
-    prepare(worker, states[worker.position()], programs, entry, "primal", light_p);
+    prepare(worker, states[worker.position()], programs, "primal", light_p);
   };
   work.upload = [&](sched::Worker& worker, const sched::Tile& tile, int slot) {
     auto& state = states[worker.position()];
@@ -88,23 +89,21 @@ ProductRun primal_on_devices(std::vector<cl::DeviceContext>& devices, cl::Progra
   };
   work.compute = [&](sched::Worker& worker, const sched::Tile& tile, int slot) {
     auto& state = states[worker.position()];
-    run_tile(worker, state, entry, tile, slot, image, static_cast<cl_uint>(k), state.rows[slot].buffer(),
+    run_tile(worker, state, tile, slot, image, static_cast<cl_uint>(k), state.rows[slot].buffer(),
              state.weights[slot].buffer());
   };
-  return run_product(devices, transport.camera_pixels(), options, "primal", work, image);
+  return run_product(devices, transport.camera_pixels(), entries, options, "primal", work, image);
 }
 
-ProductRun dual_on_devices(std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs, cl::KernelEntry entry,
-                           const transport::TransposedTransport& transposed, const std::vector<float>& light_c,
-                           sched::Options options) {
+ProductRun dual_on_devices(std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs,
+                           const cl::EntryChoice& entries, const transport::TransposedTransport& transposed,
+                           const std::vector<float>& light_c, sched::Options options) {
   const auto pixels = static_cast<std::size_t>(transposed.projector_size.area());
   if (transposed.row_start.size() != pixels + 1) throw std::invalid_argument("dual: malformed transposed transport");
   std::vector<float> image(pixels, 0.0f);
   std::vector<DeviceState> states(devices.size());
   sched::TileWork work;
-  work.prepare = [&](sched::Worker& worker) {
-    prepare(worker, states[worker.position()], programs, entry, "dual", light_c);
-  };
+  work.prepare = [&](sched::Worker& worker) { prepare(worker, states[worker.position()], programs, "dual", light_c); };
   work.upload = [&](sched::Worker& worker, const sched::Tile& tile, int slot) {
     auto& state = states[worker.position()];
     const std::int32_t first = transposed.row_start[tile.begin];
@@ -119,10 +118,10 @@ ProductRun dual_on_devices(std::vector<cl::DeviceContext>& devices, cl::ProgramC
   };
   work.compute = [&](sched::Worker& worker, const sched::Tile& tile, int slot) {
     auto& state = states[worker.position()];
-    run_tile(worker, state, entry, tile, slot, image, state.rows[slot].buffer(), state.columns[slot].buffer(),
+    run_tile(worker, state, tile, slot, image, state.rows[slot].buffer(), state.columns[slot].buffer(),
              state.weights[slot].buffer());
   };
-  return run_product(devices, pixels, options, "dual", work, image);
+  return run_product(devices, pixels, entries, options, "dual", work, image);
 }
 
 }  // namespace rfrecon::transport

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "host/cl/device_context.h"
+#include "host/cl/entry_choice.h"
 #include "host/cl/program_cache.h"
 #include "host/sched/scheduler.h"
 #include "host/transport/spmv.h"
@@ -17,12 +18,13 @@ struct ProductRun {
   sched::RunReport report;
 };
 
-// options.stage left at its default becomes "primal" / "dual"; a granularity of 0 becomes 256 pixels.
-ProductRun primal_on_devices(std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs, cl::KernelEntry entry,
-                             const transport::CompressedTransport& transport, const std::vector<float>& light_p,
-                             sched::Options options = {});
-ProductRun dual_on_devices(std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs, cl::KernelEntry entry,
-                           const transport::TransposedTransport& transposed, const std::vector<float>& light_c,
-                           sched::Options options = {});
+// options.stage left at its default becomes "primal" / "dual"; a granularity of 0 becomes 256 pixels; `entries`
+// (a KernelEntry forces one on every device) replaces options.entries.
+ProductRun primal_on_devices(std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs,
+                             const cl::EntryChoice& entries, const transport::CompressedTransport& transport,
+                             const std::vector<float>& light_p, sched::Options options = {});
+ProductRun dual_on_devices(std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs,
+                           const cl::EntryChoice& entries, const transport::TransposedTransport& transposed,
+                           const std::vector<float>& light_c, sched::Options options = {});
 
 }  // namespace rfrecon::transport

@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 
 #include "host/cl/kernel_entry.h"
+#include "kernels/common/params.h"
 #include "kernels/transport/flags.h"
 
 namespace rfrecon::transport {
@@ -51,8 +52,8 @@ inline Thresholds resolve_thresholds(Thresholds thresholds, int bit_depth) {
 struct TransportSetup {
   cv::Size camera_size;
   cv::Size projector_size;
-  int dot_spacing = 0;        // s of the s x s dot grid; 0 = Gray code only (one entry per row)
-  int entries_per_pixel = 8;  // K
+  int dot_spacing = 0;           // s of the s x s dot grid; 0 = Gray code only (one entry per row)
+  int entries_per_pixel = RF_K;  // K, by default the kernels' (kernels/common/params.h)
   Thresholds thresholds;
 };
 

@@ -1,5 +1,5 @@
 // Reciprocity integration of one rectified row (the paper's method, docs/method.md), shared by the OpenCL kernels
-// (kernels/depth/integrate.cl) and the C++ reference (host/depth/row_solvers.cc).
+// (kernels/depth/integrate.cl), the HLS C++ top (hw/hls/) and the C++ reference (host/depth/row_solvers.cc).
 //
 // Each run is integrated left to right with RK4 from its seed. The seed starts as the triangulated depth of the run's
 // first pixel; after each pass but the last it is rescaled so that the run's mean relative difference to the
@@ -16,6 +16,7 @@ typedef struct {  // NOLINT(modernize-use-using): shared with OpenCL C, which ha
   int start;      // column of the run's first pixel, -1 outside a run
   int count;      // pixels of the run with a triangulated depth
   float sum_rel;  // sum over them of (z_tri - z) / z
+  float seed;     // depth at the run's first pixel, mm
   float z;        // depth at the current pixel, mm
 } RfRunState;
 
@@ -23,45 +24,22 @@ RF_INLINE void rf_run_state_init(RfRunState* state) {
   state->start = -1;
   state->count = 0;
   state->sum_rel = 0.0f;
+  state->seed = 0.0f;
   state->z = 0.0f;
 }
 
-// Ends the current run; before the last pass, rescales its seed by its mean relative residual.
-RF_INLINE void rf_close_run(RfRunState* state, RF_GLOBAL float* z_row, int rescale_seed) {
-  if (state->start >= 0 && rescale_seed && state->count > 0) {
-    z_row[state->start] *= 1.0f + state->sum_rel / (float)state->count;
-  }
-  state->start = -1;
-}
-
-// One pixel u of pass `pass` (of `passes`). Rows are given as pointers to their first element.
-RF_INLINE void rf_integrate_pixel(RfRectifiedRig rig, float beta, int u, int proj_width, int pass, int passes,
-                                  RF_GLOBAL const float* e_cam_row, RF_GLOBAL const float* e_proj_row,
-                                  RF_GLOBAL const float* z_tri_row, RF_GLOBAL const unsigned char* run_row,
-                                  RF_GLOBAL float* z_row, RfRunState* state) {
-  const unsigned int code = run_row[u];
-  if (code != RF_RUN_CONTINUE) rf_close_run(state, z_row, pass + 1 < passes);
-  if (code == RF_RUN_MASKED) {
-    z_row[u] = NAN;
-    return;
-  }
-  if (code == RF_RUN_START) {
-    state->start = u;
-    state->count = 0;
-    state->sum_rel = 0.0f;
-    state->z = pass == 0 ? z_tri_row[u] : z_row[u];
-  } else {
-    int ok = 1;
-    const float increment = rf_rk4_increment(rig, beta, u - 1, state->z, e_cam_row, e_proj_row, proj_width, &ok);
-    if (ok) state->z += increment;
-  }
-  z_row[u] = state->z;
-  const float z_tri = z_tri_row[u];
-  if (z_tri == z_tri) {  // not NaN
-    state->sum_rel += (z_tri - state->z) / state->z;
-    state->count += 1;
-  }
-}
+#define RF_ROW_SPACE RF_GLOBAL
+#define RF_ROW_FN(name) name
+#include "depth/row_integration_rows.h"
+#undef RF_ROW_SPACE
+#undef RF_ROW_FN
+#ifdef __OPENCL_VERSION__
+#define RF_ROW_SPACE
+#define RF_ROW_FN(name) RF_ON_CHIP(name)
+#include "depth/row_integration_rows.h"
+#undef RF_ROW_SPACE
+#undef RF_ROW_FN
+#endif
 
 // The whole row: `passes` shooting passes (>= 1) over every run. Writes z_row (NaN where masked).
 RF_INLINE void rf_integrate_row(RfRectifiedRig rig, float beta, int width, int proj_width, int passes,

@@ -1,6 +1,6 @@
 // Light transport compression: streams the dot-grid frames into fixed-K "ELL" rows (K projector indices and
 // weights per camera pixel, strongest first), then finalizes the sub-pixel correspondence (weighted centroid).
-// Build option -DRF_K=<K>. ELL layout: entry k of camera pixel c at c * RF_K + k; index -1 marks an empty slot.
+// K: RF_K (common/params.h). ELL layout: entry k of camera pixel c at c * RF_K + k; index -1 marks an empty slot.
 // A frame with dot offset (ox, oy) lights projector pixels with x % s == ox and y % s == oy; a lit camera pixel
 // with Gray code coordinate (px, py) sees the lit dot nearest to it, qx = ox + s * floor((px - ox + s/2) / s)
 // (same for y), so the s x s frames fill its window [px - (s-1)/2, px + s/2] x [py - (s-1)/2, py + s/2].
@@ -8,11 +8,8 @@
 
 // Exact agreement with the C++ reference: no fused multiply-add contraction.
 #pragma OPENCL FP_CONTRACT OFF
+#include "common/params.h"
 #include "transport/flags.h"
-
-#ifndef RF_K
-#error "build with -DRF_K=<entries per camera pixel>"
-#endif
 
 inline int floor_div(int a, int b) { return a >= 0 ? a / b : -((b - 1 - a) / b); }
 

@@ -1,7 +1,8 @@
-// Program building: cache hits, build logs on failure, and the binary path FPGA boards use, round-tripped on PoCL.
+// Program building: cache hits, build logs on failure, and the board binary path FPGA boards use, run on PoCL.
 #include "host/cl/program_cache.h"
 
 #include <filesystem>
+#include <fstream>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -9,7 +10,9 @@
 #include "host/cl/device_selection.h"
 #include "host/cl/error.h"
 #include "host/cl/kernel_launch.h"
+#include "host/cl/kernel_sources.h"
 #include "host/selfcheck/axpy.h"
+#include "kernels/common/params.h"
 #include "tests/common/temp_dir.h"
 
 namespace rfrecon::cl {
@@ -67,7 +70,7 @@ TEST(ProgramCacheTest, BinaryRoundTripRunsTheSameKernel) {
   const auto built = source_programs.get(device, "selfcheck/axpy.cl");
   const rfrecon::testing::TempDir temp("program_binary");
   const auto dir = temp.path();
-  const auto path = dir / binary_file_name("selfcheck/axpy.cl", device.info());
+  const auto path = dir / "selfcheck_axpy.bin";
   save_program_binary(built, path);
   ASSERT_TRUE(std::filesystem::exists(path));
 
@@ -98,13 +101,69 @@ TEST(ProgramCacheApiErrorTest, MissingBinaryIsNamed) {
   }
 }
 
-TEST(ProgramCacheTest, BinaryNamesFollowTheVendorFlow) {
-  DeviceInfo info;
-  info.intel_fpga = true;
-  EXPECT_EQ(binary_file_name("transport/decode.cl", info), "transport_decode.aocx");
-  info.intel_fpga = false;
-  info.xilinx_fpga = true;
-  EXPECT_EQ(binary_file_name("transport/decode.cl", info), "transport_decode.xclbin");
+// Every embedded .cl file in one program, as the hw/ flows put them into one board binary.
+std::string every_kernel_source() {
+  std::string text;
+  for (const auto& file : embedded_kernel_files()) {
+    if (file.path.size() > 3 && file.path.substr(file.path.size() - 3) == ".cl") {
+      text += resolve_kernel_source(file.path);
+    }
+  }
+  return text;
+}
+
+// A PoCL binary of every kernel, with a manifest that matches this host, loaded through the board path: the device
+// is made to look like an FPGA board (no online compiler), so get() must serve every kernel file from that one
+// binary, check the build options against it, and the loaded kernels must compute what the reference computes.
+TEST(ProgramCacheTest, BoardBinaryServesEveryKernelFileFromOneLoad) {
+  auto entry = select_devices(enumerate_devices(), effective_selection("")).front();
+  DeviceContext compiler(entry);
+  ProgramCache source_programs;
+  const auto built = source_programs.build_source(compiler, "every kernel", every_kernel_source());
+  const rfrecon::testing::TempDir temp("board_binary");
+  const auto binary = temp.path() / "rfrecon_pocl.bin";
+  save_program_binary(built, binary);
+  entry.info.compiler_available = false;
+  DeviceContext board(entry);
+  const auto expected = host_manifest_expectation(board.info());
+  const nlohmann::json manifest = {{"binary", binary.filename().string()},
+                                   {"board", "pocl"},
+                                   {"device", describe(board.info())},
+                                   {"target", "test"},
+                                   {"tool", "pocl"},
+                                   {"tool_version", "0"},
+                                   {"target_macro", expected.target_macro},
+                                   {"parameters", expected.parameters},
+                                   {"kernels", embedded_kernel_names()},
+                                   {"sources", nlohmann::json::array()},
+                                   {"source_sha256", expected.source_sha256},
+                                   {"stand_in", false}};
+  std::ofstream(binary.string() + ".json") << manifest.dump(2);
+
+  ProgramCache programs(temp.path());
+  ASSERT_TRUE(programs.uses_binary(board.info()));
+  const auto axpy = programs.get(board, "selfcheck/axpy.cl");
+  EXPECT_EQ(programs.get(board, "transport/spmv.cl")(), axpy());
+  EXPECT_EQ(programs.get(board, "transport/compress.cl", "-DRF_K=" + std::to_string(RF_K))(), axpy());
+  EXPECT_EQ(programs.size(), 1U) << "one binary loaded once serves every kernel file";
+  try {
+    (void)programs.get(board, "transport/compress.cl", "-DRF_K=" + std::to_string(RF_K + 1));
+    FAIL() << "a run-time K other than the binary's must be refused";
+  } catch (const BinaryManifestError& error) {
+    EXPECT_EQ(error.field(), "parameters.RF_K");
+    EXPECT_THAT(error.what(), HasSubstr(binary.string() + ".json"));
+  }
+
+  for (const auto kernel_entry : {KernelEntry::kNdRange, KernelEntry::kSingleWorkItem}) {
+    ::cl::Kernel kernel = make_kernel(axpy, "axpy", kernel_entry);
+    const std::vector<float> x{1, 2, 3, 4};
+    const std::vector<float> y{0.5f, -1, 2, 8};
+    const ::cl::Buffer xb = upload(board.context(), x);
+    const ::cl::Buffer yb = upload(board.context(), y, CL_MEM_READ_WRITE);
+    set_args(kernel, 2.0f, xb, yb, static_cast<cl_uint>(x.size()));
+    enqueue_kernel(board.queue(), kernel, kernel_entry, x.size());
+    EXPECT_EQ(download<float>(board.queue(), yb, y.size()), selfcheck::axpy_reference(2.0f, x, y));
+  }
 }
 
 }  // namespace

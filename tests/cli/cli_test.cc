@@ -43,7 +43,7 @@ TEST(CliTest, DevicesJsonListsTheFields) {
   const auto result = run_cli("devices --json");
   ASSERT_EQ(result.exit_code, kExitOk) << result.output;
   for (const char* key : {"\"platform\"", "\"compute_units\"", "\"global_mem_bytes\"", "\"opencl_c_version\"",
-                          "\"fp64\"", "\"fp16\"", "\"programs\": \"source\""}) {
+                          "\"fp64\"", "\"fp16\"", "\"programs\": \"source\"", "\"entry\": \""}) {
     EXPECT_THAT(result.output, HasSubstr(key));
   }
 }
@@ -56,7 +56,8 @@ TEST(CliTest, CommandLineMistakesAreExitCode2) {
         "patterns --projector 64x48 --dot-spacing 100000 -o /tmp/rfrecon-cli-patterns",
         "reconstruct T.h5 --calib rig.yaml --epipolar-tolerance inf -o /tmp/rfrecon-cli-out",
         "transport /tmp -o /tmp/rfrecon-cli-T.h5 --tile-timeout 1",
-        "transport /tmp -o /tmp/rfrecon-cli-T.h5 --devices ,"}) {
+        "transport /tmp -o /tmp/rfrecon-cli-T.h5 --devices ,", "transport /tmp -o /tmp/rfrecon-cli-T.h5 --entry fast",
+        "reconstruct T.h5 --calib rig.yaml --entry single,,ndrange -o /tmp/rfrecon-cli-out"}) {
     const auto result = run_cli(arguments);
     EXPECT_EQ(result.exit_code, kExitUsage) << arguments << "\n" << result.output;
   }

@@ -6,22 +6,17 @@
 #include <gtest/gtest.h>
 
 #include "host/cl/device_selection.h"
+#include "host/core/errors.h"
 #include "host/depth/row_solvers.h"
+#include "kernels/common/params.h"
 #include "tests/depth/analytic_rows.h"
+#include "tests/depth/row_solver_inputs.h"
 
 namespace rfrecon::depth {
 namespace {
 
-testing::Plane tilted_plane() {
-  // Normal tilted 20 degrees about y and 6 about x, facing the devices, through (10, 0, 500) mm.
-  const double nx = 0.34, ny = -0.1, nz = -0.93, length = std::sqrt(nx * nx + ny * ny + nz * nz);
-  testing::Plane plane{nx / length, ny / length, nz / length, 0.0};
-  plane.d = plane.nx * 10.0 + plane.nz * 500.0;
-  return plane;
-}
-
-// Deterministic "noise" in [-1, 1].
-float pseudo_noise(std::size_t i) { return static_cast<float>(std::sin(12.9898 * static_cast<double>(i) + 1.0)); }
+using testing::pseudo_noise;
+using testing::tilted_plane;
 
 double rms_error(const std::vector<float>& z, const RectifiedRows& truth, int row_begin) {
   double sum = 0.0;
@@ -80,28 +75,14 @@ class RowSolversKernel : public ::testing::TestWithParam<KernelEntry> {
  protected:
   void SetUp() override {
     devices_ = cl::open_devices("all");
-    rows_ = testing::analytic_rows(tilted_plane(), 24, 11);
-    for (std::size_t i = 0; i < rows_.z_tri.size(); ++i) rows_.z_tri[i] += 0.5f * pseudo_noise(i);
-    rows_.runs[5 * 24 + 7] = RF_RUN_MASKED;  // one masked pixel, then a new run
-    rows_.runs[5 * 24 + 8] = RF_RUN_START;
+    rows_ = testing::kernel_test_rows();
   }
   std::vector<cl::DeviceContext> devices_;
   cl::ProgramCache programs_;
   RectifiedRows rows_;
 };
 
-// Same float arithmetic as the reference (FP_CONTRACT OFF), but OpenCL's sqrt and division may differ from the
-// host's by an ulp or two: 1e-5 relative (6 um at 600 mm) bounds their effect after a row of RK4 steps.
-void expect_close(const std::vector<float>& actual, const std::vector<float>& expected) {
-  ASSERT_EQ(actual.size(), expected.size());
-  for (std::size_t i = 0; i < actual.size(); ++i) {
-    if (std::isnan(expected[i])) {
-      EXPECT_TRUE(std::isnan(actual[i])) << "pixel " << i;
-    } else {
-      EXPECT_NEAR(actual[i], expected[i], 1e-5 * std::abs(expected[i])) << "pixel " << i;
-    }
-  }
-}
+using testing::expect_close;
 
 TEST_P(RowSolversKernel, IntegrationMatchesReferenceOnTiles) {
   // Two tiles (rows 0-4 and 5-10) put together equal the reference over all rows: a tile only changes beta's origin.
@@ -124,6 +105,20 @@ TEST_P(RowSolversKernel, FusionMatchesReferenceOnTiles) {
       fuse_rows_opencl(devices_.front(), programs_, GetParam(), rows_, start_second, options, 3, rows_.height);
   first.insert(first.end(), second.begin(), second.end());
   expect_close(first, reference);
+}
+
+TEST(RowSolversKernelWidth, SingleEntriesRefuseRowsWiderThanTheirBuffers) {
+  // One row of RF_MAX_ROW_WIDTH + 1 pixels: refused before any upload by the single work-item entries, whose on-chip
+  // buffers hold RF_MAX_ROW_WIDTH pixels (the NDRange entries have no such limit).
+  auto devices = cl::open_devices("all");
+  cl::ProgramCache programs;
+  const auto rows = testing::analytic_rows(tilted_plane(), RF_MAX_ROW_WIDTH + 1, 1);
+  const IntegrationOptions options{1};
+  EXPECT_THROW(integrate_rows_opencl(devices.front(), programs, KernelEntry::kSingleWorkItem, rows, options, 0, 1),
+               ProcessingError);
+  EXPECT_THROW(fuse_rows_opencl(devices.front(), programs, KernelEntry::kSingleWorkItem, rows, rows.z_tri,
+                                FusionOptions{}, 0, 1),
+               ProcessingError);
 }
 
 INSTANTIATE_TEST_SUITE_P(Entries, RowSolversKernel,

@@ -77,6 +77,41 @@ TEST_F(SchedCliTest, TransportSummaryHasPerStageDeviceShares) {
   EXPECT_TRUE(json["stage_seconds"].contains("decode"));
 }
 
+// single,ndrange,single,... with one word per selected device (or one more).
+std::string entry_list(std::size_t words) {
+  std::string list;
+  for (std::size_t i = 0; i < words; ++i) list += std::string(i == 0 ? "" : ",") + (i % 2 == 0 ? "single" : "ndrange");
+  return list;
+}
+
+TEST_F(SchedCliTest, EntryListGivesEachDeviceItsEntryAndTheSummaryNamesIt) {
+  const auto result = run_cli(transport_args() + " --entry " + entry_list(devices_));
+  ASSERT_EQ(result.exit_code, cli::kExitOk) << result.output;
+  EXPECT_NE(result.output.find("(entry single)"), std::string::npos) << result.output;  // the start-up log
+  const nlohmann::json written = summary();  // named: a range-for over summary()["schedule"] would outlive it
+  for (const auto& stage : written.at("schedule")) {
+    ASSERT_EQ(stage["devices"].size(), devices_);
+    for (std::size_t i = 0; i < devices_; ++i) {
+      EXPECT_EQ(stage["devices"][i]["entry"], i % 2 == 0 ? "single" : "ndrange") << stage["stage"] << " device " << i;
+    }
+  }
+}
+
+TEST_F(SchedCliTest, EntryListOfAnotherLengthThanTheDevicesIsExitCode2BeforeAnyWork) {
+  const std::string counts = std::to_string(devices_ + 1) + " entries for " + std::to_string(devices_) +
+                             " selected device" + (devices_ == 1 ? "" : "s");
+  const auto transport = run_cli(transport_args() + " --entry " + entry_list(devices_ + 1));
+  EXPECT_EQ(transport.exit_code, cli::kExitUsage) << transport.output;
+  EXPECT_NE(transport.output.find(counts), std::string::npos) << transport.output;
+  EXPECT_FALSE(std::filesystem::exists(dir_.path() / "T.h5"));
+  // Checked before the inputs are read: missing files would be exit 3.
+  const auto reconstruct = run_cli("reconstruct " + (dir_.path() / "missing.h5").string() + " --calib " +
+                                   (dir_.path() / "missing.yaml").string() + " -o " + (dir_.path() / "out").string() +
+                                   " --entry " + entry_list(devices_ + 1));
+  EXPECT_EQ(reconstruct.exit_code, cli::kExitUsage) << reconstruct.output;
+  EXPECT_NE(reconstruct.output.find(counts), std::string::npos) << reconstruct.output;
+}
+
 TEST_F(SchedCliTest, TransportCompletesWhenADeviceFailsAndReportsIt) {
   if (devices_ < 2) GTEST_SKIP() << "needs two OpenCL devices (POCL_DEVICES=\"pthread pthread\")";
   ::setenv(kInjectFaultEnv, "0:3", 1);

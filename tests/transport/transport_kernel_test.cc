@@ -9,35 +9,17 @@
 #include "host/cl/device_selection.h"
 #include "host/transport/compute_transport.h"
 #include "host/transport/spmv.h"
+#include "tests/transport/same_transport.h"
 #include "tests/transport/synthetic_capture.h"
 #include "tests/transport/test_capture_feed.h"
 
 namespace rfrecon::transport {
 namespace {
 
+using testing::expect_same_transport;
 using testing::PlaneScene;
 
 constexpr KernelEntry kEntries[] = {KernelEntry::kNdRange, KernelEntry::kSingleWorkItem};
-
-// Everything but the correspondence is integer logic or a single float subtraction/addition in the same order on
-// both sides, so it must agree bit for bit. The centroid divides, and OpenCL's single-precision division may be
-// off by 2.5 ulp: 1e-5 projector pixels covers that at these coordinates (< 64).
-void expect_same_transport(const CompressedTransport& got, const CompressedTransport& expected) {
-  EXPECT_EQ(got.indices, expected.indices);
-  EXPECT_EQ(got.weights, expected.weights);
-  EXPECT_EQ(got.gray_x, expected.gray_x);
-  EXPECT_EQ(got.gray_y, expected.gray_y);
-  EXPECT_EQ(got.flags, expected.flags);
-  EXPECT_EQ(got.direct_energy, expected.direct_energy);
-  ASSERT_EQ(got.correspondence.size(), expected.correspondence.size());
-  for (std::size_t i = 0; i < got.correspondence.size(); ++i) {
-    if (std::isnan(expected.correspondence[i])) {
-      EXPECT_TRUE(std::isnan(got.correspondence[i])) << i;
-    } else {
-      EXPECT_NEAR(got.correspondence[i], expected.correspondence[i], 1e-5) << i;
-    }
-  }
-}
 
 struct TinyCapture {
   PlaneScene scene;

@@ -1,0 +1,314 @@
+// A whole scan, from camera frames to the fused point cloud, at a real rig's size (camera 1280x1024, projector
+// 1024x768, the full protocol: white, black, Gray code, 8 x 8 dots): every stage timed, the transport's bytes against
+// the minimal bytes and the memory roofline, peak resident memory, and the peer: the Gray-code-only triangulation
+// against OpenCV's (GrayCodePattern decode plus cv::triangulatePoints) on the same frames. docs/performance.md.
+//
+//   build/bench/pipeline_bench [--scan=DIR] [--benchmark_out=FILE --benchmark_out_format=json]
+//
+// The scan (cube-anisotropic rendered by sim::simulate, about 40 s) is written to DIR when DIR has none, and reused;
+// without --scan it goes to a temporary directory, removed at exit. The frames are PNG files there: the stage
+// "read frames" is the time the pipeline waited for them (they are read on another thread while the devices work),
+// and pipeline_seconds leaves it out, as if the frames came from memory.
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/structured_light.hpp>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "bench/bench_common.h"
+#include "calib/rig.h"
+#include "host/capture/manifest.h"
+#include "host/cl/device_selection.h"
+#include "host/depth/reconstruct_depth.h"
+#include "host/transport/compute_transport.h"
+#include "host/transport/transport_file.h"
+#include "sim/builtin_scenes.h"
+#include "sim/simulate.h"
+
+namespace {
+
+using namespace rfrecon;
+namespace fs = std::filesystem;
+
+const cv::Size kCamera(1280, 1024);
+const cv::Size kProjector(1024, 768);
+
+fs::path& scan_dir() {
+  static fs::path dir;
+  return dir;
+}
+fs::path capture_dir() { return scan_dir() / "capture"; }
+
+// The modes of this program run as a child process (a fresh copy of it, so that its memory high-water mark and its
+// threads are its own): render the scan, or run one fused scan.
+constexpr const char* kRenderMode = "--child-render";
+constexpr const char* kScanMode = "--child-scan";
+
+// Runs this program in `mode` on scan_dir() and returns the child's peak resident memory in MB.
+double run_child(const char* mode) {
+  const std::string scan = "--scan=" + scan_dir().string();
+  const pid_t child = fork();
+  if (child == 0) {
+    execl("/proc/self/exe", "pipeline_bench", scan.c_str(), mode, static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  int status = 0;
+  rusage usage{};
+  wait4(child, &status, 0, &usage);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    throw std::runtime_error(std::string("pipeline_bench: the child ") + mode + " failed");
+  }
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // kB on Linux
+}
+
+void render_scan() {
+  sim::Scene scene = sim::builtin_scene("cube-anisotropic");
+  sim::resize_device(scene.camera, kCamera);
+  sim::resize_device(scene.projector, kProjector);
+  sim::simulate(scene, scan_dir(), sim::SimulateOptions{});  // refuses a directory that holds anything else
+}
+
+// Renders the scan into scan_dir() unless it holds one.
+void prepare_scan() {
+  if (fs::exists(capture_dir() / capture::kManifestFileName)) return;
+  std::printf("rendering the scan into %s (about 40 s)...\n", scan_dir().c_str());
+  std::fflush(stdout);
+  run_child(kRenderMode);
+}
+
+// Figures one benchmark needs from another or from main (benchmarks run in the order registered below).
+struct SharedFigures {
+  double opencv_decode_seconds = 0.0;
+  double peak_rss_mb = 0.0;
+};
+SharedFigures& shared() {
+  static SharedFigures figures;
+  return figures;
+}
+
+std::vector<rfrecon::cl::DeviceContext>& devices() {
+  static std::vector<rfrecon::cl::DeviceContext> instance = rfrecon::cl::open_devices("");
+  return instance;
+}
+rfrecon::cl::ProgramCache& programs() {
+  static rfrecon::cl::ProgramCache cache;
+  return cache;
+}
+
+// The capture's manifest; gray_only drops the dot frames (what a Gray-code scanner captures).
+capture::CaptureManifest manifest(bool gray_only) {
+  capture::CaptureManifest m = capture::read_manifest(capture_dir());
+  if (gray_only) {
+    std::vector<capture::Frame> kept;
+    for (const auto& frame : m.frames) {
+      if (frame.pattern.kind != capture::PatternKind::kDot) kept.push_back(frame);
+    }
+    m.frames = kept;
+    m.dot_spacing = 0;
+  }
+  return m;
+}
+
+// One scan through transport and reconstruct on every device, with the stage timings both report.
+struct ScanRun {
+  std::map<std::string, double> seconds;  // per stage, transport's and reconstruct's
+  double read_wait_seconds = 0.0;         // "read frames"
+  double total_seconds = 0.0;             // every stage but "read frames"
+  double usable_rows_pixels = 0.0;        // rectified samples carrying the ODE (integration's items)
+  std::size_t transport_bytes = 0;        // T's indices and weights
+};
+
+ScanRun run_scan(bool gray_only, depth::Method method) {
+  ScanRun run;
+  auto transport = transport::compute_transport_on_devices(capture_dir(), manifest(gray_only), {}, devices(),
+                                                           programs(), rfrecon::cl::KernelEntry::kNdRange);
+  for (const auto& timing : transport.timings) run.seconds[timing.stage] += timing.seconds;
+  const calib::StereoRig rig = calib::read_rig(scan_dir() / "truth" / "rig.yaml");
+  depth::DepthOptions options;
+  options.method = method;
+  const auto depth =
+      depth::reconstruct_depth(transport.transport, rig, "truth/rig.yaml", options, devices(), programs());
+  for (const auto& timing : depth.summary.at("timings")) {
+    run.seconds[timing.at("stage").get<std::string>()] += timing.at("seconds").get<double>();
+  }
+  for (const auto& [stage, seconds] : run.seconds) {
+    if (stage == "read frames") {
+      run.read_wait_seconds = seconds;
+    } else {
+      run.total_seconds += seconds;
+    }
+  }
+  if (depth.summary.contains("segmentation")) {
+    run.usable_rows_pixels = depth.summary.at("segmentation").at("usable_pixels").get<double>();
+  }
+  run.transport_bytes =
+      transport.transport.indices.size() * sizeof(std::int32_t) + transport.transport.weights.size() * sizeof(float);
+  return run;
+}
+
+std::size_t frame_count(bool gray_only) { return manifest(gray_only).frames.size(); }
+double frame_bytes() { return static_cast<double>(kCamera.area()) * sizeof(float); }  // as the kernels read them
+
+// Fused pipeline. Counters, from the last iteration (the first builds the programs): each stage's seconds,
+// pipeline_seconds, the transport's minimal bytes (every frame read once as float, T written once) against the
+// roofline, compression's fraction of it (dot frames' bytes / compress seconds), the integration's Mpx/s.
+void BM_FusedScan(benchmark::State& state) {
+  ScanRun run;
+  for (auto _ : state) run = run_scan(false, depth::Method::kFused);
+  for (const auto& [stage, seconds] : run.seconds) state.counters[stage + "_seconds"] = seconds;
+  state.counters["pipeline_seconds"] = run.total_seconds;
+  state.counters["pipeline_with_reading_seconds"] = run.total_seconds + run.read_wait_seconds;
+  const double roofline = bench::host_stream_bytes_per_second();
+  const double minimal_bytes = static_cast<double>(frame_count(false)) * frame_bytes() + run.transport_bytes;
+  const double transport_seconds = run.seconds["decode"] + run.seconds["compress"] + run.seconds["finalize"];
+  state.counters["transport_minimal_bytes"] = minimal_bytes;
+  state.counters["transport_roofline_fraction"] = minimal_bytes / transport_seconds / roofline;
+  const double dot_bytes = static_cast<double>(frame_count(false) - frame_count(true)) * frame_bytes();
+  state.counters["compress_roofline_fraction"] = dot_bytes / run.seconds["compress"] / roofline;
+  state.counters["integrate_mpx_per_s"] = run.usable_rows_pixels / run.seconds["integrate"] / 1e6;
+  state.counters["peak_rss_mb"] = shared().peak_rss_mb;
+}
+
+// rfrecon's Gray-code-only triangulation (decode, sub-pixel refinement, triangulation) on the scan's Gray frames.
+void BM_GrayTriangulation(benchmark::State& state) {
+  ScanRun run;
+  for (auto _ : state) run = run_scan(true, depth::Method::kTriangulate);
+  for (const auto& [stage, seconds] : run.seconds) state.counters[stage + "_seconds"] = seconds;
+  state.counters["pipeline_seconds"] = run.total_seconds;
+  state.counters["decode_speedup_vs_opencv"] = shared().opencv_decode_seconds / run.seconds["decode"];
+}
+
+// The same Gray frames as 8-bit images (what OpenCV's decoder reads), white and black first.
+const std::vector<cv::Mat>& gray_frames_8bit() {
+  static const std::vector<cv::Mat> frames = [] {
+    const auto m = manifest(true);
+    std::vector<cv::Mat> result(m.frames.size());
+    for (std::size_t i = 0; i < m.frames.size(); ++i) {
+      capture::load_frame(capture_dir(), m, i).convertTo(result[i], CV_8U, 255.0);
+    }
+    return result;
+  }();
+  return frames;
+}
+
+// OpenCV's pipeline on those frames: GrayCodePattern::getProjPixel per lit pixel (integer projector pixels), then
+// cv::undistortPoints and cv::triangulatePoints through the true rig.
+void BM_GrayTriangulationOpenCV(benchmark::State& state) {
+  const auto& frames = gray_frames_8bit();
+  const calib::StereoRig rig = calib::read_rig(scan_dir() / "truth" / "rig.yaml");
+  cv::structured_light::GrayCodePattern::Params params;
+  params.width = kProjector.width;
+  params.height = kProjector.height;
+  auto graycode = cv::structured_light::GrayCodePattern::create(params);
+  graycode->setBlackThreshold(10);  // rfrecon's thresholds in 8-bit numbers
+  graycode->setWhiteThreshold(5);
+  // rfrecon's manifest order is white, black, then the pairs in OpenCV's order.
+  const std::vector<cv::Mat> patterns(frames.begin() + 2, frames.end());
+  const cv::Mat P_cam = cv::Mat::eye(3, 4, CV_64F);
+  cv::Mat P_proj(3, 4, CV_64F);
+  cv::hconcat(rig.R, rig.T, P_proj);
+  std::size_t points = 0;
+  double decode_seconds = 0.0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    const cv::Mat lit = (frames[0] - frames[1]) > 10;
+    std::vector<cv::Point2f> camera_px, projector_px;
+    for (int v = 0; v < kCamera.height; ++v) {
+      for (int u = 0; u < kCamera.width; ++u) {
+        cv::Point projector(-1, -1);
+        if (lit.at<unsigned char>(v, u) != 0 && !graycode->getProjPixel(patterns, u, v, projector)) {
+          camera_px.emplace_back(static_cast<float>(u), static_cast<float>(v));
+          projector_px.emplace_back(static_cast<float>(projector.x), static_cast<float>(projector.y));
+        }
+      }
+    }
+    decode_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::vector<cv::Point2f> camera_rays, projector_rays;
+    cv::undistortPoints(camera_px, camera_rays, rig.camera_matrix, rig.dist_coeffs);
+    cv::undistortPoints(projector_px, projector_rays, rig.projector_matrix, rig.projector_dist_coeffs);
+    cv::Mat homogeneous;
+    cv::triangulatePoints(P_cam, P_proj, camera_rays, projector_rays, homogeneous);
+    points = camera_px.size();
+    benchmark::DoNotOptimize(homogeneous.data);
+  }
+  state.counters["points"] = static_cast<double>(points);
+  state.counters["decode_seconds"] = decode_seconds;
+  shared().opencv_decode_seconds = decode_seconds;
+}
+
+// Wall-clock time throughout (the devices' work runs in PoCL's threads). Each iteration is a whole scan of seconds.
+BENCHMARK(BM_GrayTriangulationOpenCV)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
+BENCHMARK(BM_GrayTriangulation)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+BENCHMARK(BM_FusedScan)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<char*> arguments;
+  bool temporary = true;
+  std::string mode;
+  for (int i = 0; i < argc; ++i) {
+    const std::string argument = argv[i];
+    if (argument.rfind("--scan=", 0) == 0) {
+      scan_dir() = argument.substr(7);
+      temporary = false;
+    } else if (argument == kRenderMode || argument == kScanMode) {
+      mode = argument;
+    } else {
+      arguments.push_back(argv[i]);
+    }
+  }
+  if (mode == kRenderMode) {
+    try {
+      render_scan();
+    } catch (const std::exception& error) {
+      std::fprintf(stderr, "pipeline_bench: %s\n", error.what());
+      return 3;
+    }
+    return 0;
+  }
+  if (mode == kScanMode) {
+    run_scan(false, depth::Method::kFused);
+    return 0;
+  }
+  if (temporary) scan_dir() = fs::temp_directory_path() / ("rfrecon_pipeline_bench_" + std::to_string(getpid()));
+  int count = static_cast<int>(arguments.size());
+  benchmark::Initialize(&count, arguments.data());
+  if (benchmark::ReportUnrecognizedArguments(count, arguments.data())) return 1;
+  try {
+    prepare_scan();
+    shared().peak_rss_mb = run_child(kScanMode);
+  } catch (const std::exception& error) {  // the child has said why
+    std::fprintf(stderr, "%s\n", error.what());
+    return 3;
+  }
+  rfrecon::bench::RecordingReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  const auto ratio = [](double a, double b) { return b > 0.0 ? a / b : 0.0; };
+  const double opencv = reporter.seconds("BM_GrayTriangulationOpenCV");
+  std::printf("\nfused scan: %.3f s without waiting for frames (%.3f s with), peak resident memory %.0f MB\n",
+              reporter.counter("BM_FusedScan", "pipeline_seconds"),
+              reporter.counter("BM_FusedScan", "pipeline_with_reading_seconds"), shared().peak_rss_mb);
+  std::printf("Gray-code triangulation: rfrecon %.3f s, OpenCV %.3f s: %.1fx; decoding alone %.1fx\n",
+              reporter.counter("BM_GrayTriangulation", "pipeline_seconds"), opencv,
+              ratio(opencv, reporter.counter("BM_GrayTriangulation", "pipeline_seconds")),
+              reporter.counter("BM_GrayTriangulation", "decode_speedup_vs_opencv"));
+  std::printf("roofline %.2f GB/s: transport %.3f of it on minimal bytes, compression %.3f; integration %.1f Mpx/s\n",
+              rfrecon::bench::host_stream_bytes_per_second() / 1e9,
+              reporter.counter("BM_FusedScan", "transport_roofline_fraction"),
+              reporter.counter("BM_FusedScan", "compress_roofline_fraction"),
+              reporter.counter("BM_FusedScan", "integrate_mpx_per_s"));
+  benchmark::Shutdown();
+  if (temporary) fs::remove_all(scan_dir());
+  return 0;
+}

@@ -1,0 +1,40 @@
+# Intel FPGA SDK for OpenCL flow (aoc, SDK 19.x to 22.4): every .cl file into one binary per target.
+#   rfrecon_fpga_emulator  aoc -march=emulator  -> rfrecon_<board>_emulator.aocx   (seconds to minutes)
+#   rfrecon_fpga_report    aoc -rtl -report     -> rfrecon_<board>_report.aocr and its reports/ (minutes)
+#   rfrecon_fpga_hardware  aoc (full synthesis) -> rfrecon_<board>.aocx             (hours)
+find_program(RFRECON_AOC aoc DOC "Intel FPGA SDK for OpenCL offline compiler (or a stand-in)")
+if(NOT RFRECON_AOC)
+  message(STATUS "FPGA ${RFRECON_FPGA_BOARD}: aoc not found, no FPGA targets (set RFRECON_AOC or source the SDK)")
+  return()
+endif()
+fpga_tool_version(${RFRECON_AOC} -version "Version ([0-9]+\\.[0-9]+(\\.[0-9]+)?)")
+if(fpga_tool_version VERSION_LESS 19.0 OR fpga_tool_version VERSION_GREATER_EQUAL 22.5)
+  message(FATAL_ERROR "aoc ${fpga_tool_version} (${RFRECON_AOC}): the flow supports the Intel FPGA SDK for OpenCL "
+                      "19.x to 22.4, the last release")
+endif()
+set(fpga_tool_name aoc)
+set(fpga_macro RF_TARGET_INTEL_FPGA)
+message(STATUS "FPGA ${RFRECON_FPGA_BOARD} (${RFRECON_FPGA_DESCRIPTION}): aoc ${fpga_tool_version} "
+               "-board=${fpga_device}${fpga_stand_in_note}")
+
+set(aoc_common -board=${fpga_device} ${fpga_includes} -D${fpga_macro}
+               ${RFRECON_FPGA_EXTRA_FLAGS})
+foreach(target IN ITEMS emulator report hardware)
+  if(target STREQUAL "emulator")
+    set(flags -march=emulator)
+    set(binary ${fpga_out}/rfrecon_${RFRECON_FPGA_BOARD}_emulator.aocx)
+  elseif(target STREQUAL "report")
+    set(flags -rtl -report)
+    set(binary ${fpga_out}/rfrecon_${RFRECON_FPGA_BOARD}_report.aocr)
+  else()
+    set(flags "")
+    set(binary ${fpga_out}/rfrecon_${RFRECON_FPGA_BOARD}.aocx)
+  endif()
+  fpga_manifest_command(manifest ${binary} ${target} "${fpga_kernels}")
+  add_custom_command(OUTPUT ${binary} ${binary}.json
+                     COMMAND ${RFRECON_AOC} ${flags} ${aoc_common} ${fpga_cl_paths} -o ${binary}
+                     COMMAND ${manifest}
+                     DEPENDS ${fpga_source_paths} WORKING_DIRECTORY ${fpga_out} VERBATIM
+                     COMMENT "aoc ${target}: ${RFRECON_FPGA_BOARD}")
+  add_custom_target(rfrecon_fpga_${target} DEPENDS ${binary} ${binary}.json)
+endforeach()

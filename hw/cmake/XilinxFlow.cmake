@@ -1,0 +1,69 @@
+# AMD Vitis flow for the OpenCL C kernels (v++, Vitis 2019.2 to 2022.2; 2023.1 and later compile only C++ and RTL
+# kernels). Each single work-item entry is compiled on its own (v++ -c -k), then all are linked into one .xclbin with
+# the board's link configuration (compute units and memory banks).
+#   rfrecon_fpga_sw_emu  -> rfrecon_<board>_sw_emu.xclbin and emconfig.json   (minutes)
+#   rfrecon_fpga_hw_emu  -> rfrecon_<board>_hw_emu.xclbin and emconfig.json   (tens of minutes)
+#   rfrecon_fpga_report  the hardware .xo files only: HLS synthesis and its reports under _x.hw/ (tens of minutes)
+#   rfrecon_fpga_hw      -> rfrecon_<board>.xclbin                             (hours)
+find_program(RFRECON_VXX v++ DOC "AMD Vitis compiler (or a stand-in)")
+find_program(RFRECON_EMCONFIGUTIL emconfigutil DOC "AMD Vitis emulation configuration tool (or a stand-in)")
+if(NOT RFRECON_VXX)
+  message(STATUS "FPGA ${RFRECON_FPGA_BOARD}: v++ not found, no FPGA targets (set RFRECON_VXX or source Vitis)")
+  return()
+endif()
+fpga_tool_version(${RFRECON_VXX} --version "v\\+\\+ v([0-9]+\\.[0-9]+(\\.[0-9]+)?)")
+if(fpga_tool_version VERSION_LESS 2019.2 OR fpga_tool_version VERSION_GREATER_EQUAL 2023.1)
+  message(FATAL_ERROR "v++ ${fpga_tool_version} (${RFRECON_VXX}): the OpenCL C flow supports Vitis 2019.2 to 2022.2; "
+                      "later releases compile only C++ (HLS) and RTL kernels, which rfrecon does not have yet")
+endif()
+set(fpga_tool_name v++)
+set(fpga_macro RF_TARGET_XILINX_FPGA)
+message(STATUS "FPGA ${RFRECON_FPGA_BOARD} (${RFRECON_FPGA_DESCRIPTION}): v++ ${fpga_tool_version} "
+               "--platform ${fpga_device}${fpga_stand_in_note}")
+
+set(vxx_common --platform ${fpga_device} ${fpga_includes} -D${fpga_macro}
+               ${RFRECON_FPGA_EXTRA_FLAGS})
+set(single_names "")
+foreach(entry IN LISTS fpga_single_kernels)
+  string(REGEX REPLACE ":.*" "" file ${entry})
+  string(REGEX REPLACE ".*:" "" kernel ${entry})
+  list(APPEND single_names ${kernel})
+  foreach(target IN ITEMS sw_emu hw_emu hw)
+    set(xo ${fpga_out}/xo.${target}/${kernel}.xo)
+    add_custom_command(OUTPUT ${xo}
+                       COMMAND ${RFRECON_VXX} -c -t ${target} ${vxx_common} -k ${kernel} --temp_dir
+                               ${fpga_out}/_x.${target}/${kernel} -o ${xo} ${fpga_kernel_dir}/${file}
+                       DEPENDS ${fpga_source_paths} WORKING_DIRECTORY ${fpga_out} VERBATIM
+                       COMMENT "v++ -c ${target}: ${kernel}")
+    list(APPEND xo_${target} ${xo})
+  endforeach()
+endforeach()
+add_custom_target(rfrecon_fpga_report DEPENDS ${xo_hw})
+# Emulation runs need the platform's emconfig.json beside the binary (XCL_EMULATION_MODE=sw_emu or hw_emu).
+set(emconfig "")
+if(RFRECON_EMCONFIGUTIL)
+  set(emconfig ${fpga_out}/emconfig.json)
+  add_custom_command(OUTPUT ${emconfig} COMMAND ${RFRECON_EMCONFIGUTIL} --platform ${fpga_device} --od ${fpga_out}
+                     WORKING_DIRECTORY ${fpga_out} VERBATIM COMMENT "emconfigutil ${fpga_device}")
+endif()
+
+foreach(target IN ITEMS sw_emu hw_emu hw)
+  if(target STREQUAL "hw")
+    set(binary ${fpga_out}/rfrecon_${RFRECON_FPGA_BOARD}.xclbin)
+  else()
+    set(binary ${fpga_out}/rfrecon_${RFRECON_FPGA_BOARD}_${target}.xclbin)
+  endif()
+  fpga_manifest_command(manifest ${binary} ${target} "${single_names}")
+  add_custom_command(OUTPUT ${binary} ${binary}.json
+                     COMMAND ${RFRECON_VXX} -l -t ${target} --platform ${fpga_device} --config
+                             ${RFRECON_FPGA_LINK_CONFIG} --temp_dir ${fpga_out}/_x.${target}/link -o ${binary}
+                             ${xo_${target}}
+                     COMMAND ${manifest}
+                     DEPENDS ${xo_${target}} ${RFRECON_FPGA_LINK_CONFIG} WORKING_DIRECTORY ${fpga_out} VERBATIM
+                     COMMENT "v++ -l ${target}: ${RFRECON_FPGA_BOARD}")
+  set(outputs ${binary} ${binary}.json)
+  if(NOT target STREQUAL "hw")
+    list(APPEND outputs ${emconfig})
+  endif()
+  add_custom_target(rfrecon_fpga_${target} DEPENDS ${outputs})
+endforeach()

@@ -1,0 +1,243 @@
+// The manifest checks the host makes before loading a board binary (ctest label fpga; no device, no vendor tool).
+// The starting point is a real manifest: the Intel emulator flow of hw/ is run once with the stand-in aoc of
+// tests/fpga, so the tests also show that the flow's source hash, parameters and kernel list are the host's.
+#include "host/cl/binary_manifest.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "host/cl/kernel_sources.h"
+#include "kernels/common/params.h"
+#include "tests/common/temp_dir.h"
+
+namespace rfrecon::cl {
+namespace {
+
+using ::testing::HasSubstr;
+
+// Runs the 520n emulator flow of hw/ with the stand-in aoc in `build` (with further configure options) and returns
+// the manifest it wrote.
+nlohmann::json run_flow(const std::filesystem::path& build, const std::string& options = {}) {
+  const std::string source = RFRECON_SOURCE_DIR;
+  const std::string cmake = RFRECON_CMAKE_COMMAND;
+  const std::string log = (build / "flow.log").string();
+  const std::string configure = "\"" + cmake + "\" -S \"" + source + "/hw\" -B \"" + build.string() +
+                                "\" -DRFRECON_FPGA_BOARD=520n -DRFRECON_AOC=\"" + source + "/tests/fpga/bin/aoc\" " +
+                                options;
+  const std::string compile = "\"" + cmake + "\" --build \"" + build.string() + "\" --target rfrecon_fpga_emulator";
+  if (std::system((configure + " > \"" + log + "\" 2>&1 && " + compile + " >> \"" + log + "\" 2>&1").c_str()) != 0) {
+    ADD_FAILURE() << "the stand-in flow failed; see " << log;
+    return nlohmann::json::object();
+  }
+  std::ifstream in(build / "rfrecon_520n_emulator.aocx.json");
+  return nlohmann::json::parse(in);
+}
+
+class BinaryManifestTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    flow_ = new rfrecon::testing::TempDir("manifest_flow");
+    flow_manifest_ = new nlohmann::json(run_flow(flow_->path()));
+  }
+  static void TearDownTestSuite() {
+    delete flow_manifest_;
+    delete flow_;
+  }
+
+  void SetUp() override {
+    intel_.intel_fpga = true;
+    intel_.compiler_available = false;
+  }
+
+  // Writes `manifest` beside a binary named after its `binary` field (a placeholder file: nothing loads it here).
+  std::filesystem::path write(const nlohmann::json& manifest, const std::string& text = {}) const {
+    const auto binary = temp_.path() / manifest.value("binary", std::string("board.aocx"));
+    std::ofstream(binary) << "binary";
+    std::ofstream(binary.string() + ".json") << (text.empty() ? manifest.dump(2) : text);
+    return binary;
+  }
+
+  // The flow's manifest as a real aoc would have written it: the same but for stand_in.
+  static nlohmann::json real_manifest() {
+    nlohmann::json manifest = *flow_manifest_;
+    manifest["stand_in"] = false;
+    return manifest;
+  }
+
+  // Expects check_binary_manifest to refuse, naming the manifest file and `field`; returns the message.
+  std::string refusal(const std::filesystem::path& binary, const std::string& field) const {
+    try {
+      (void)check_binary_manifest(binary, host_manifest_expectation(intel_));
+    } catch (const BinaryManifestError& error) {
+      EXPECT_EQ(error.field(), field) << error.what();
+      EXPECT_EQ(error.code(), CL_INVALID_BINARY);
+      EXPECT_THAT(error.what(), HasSubstr(error.manifest_file().string()));
+      return error.what();
+    }
+    ADD_FAILURE() << binary << ": accepted, expected a refusal naming " << field;
+    return {};
+  }
+
+  static rfrecon::testing::TempDir* flow_;
+  static nlohmann::json* flow_manifest_;
+  DeviceInfo intel_;
+  rfrecon::testing::TempDir temp_{"manifest_case"};
+};
+rfrecon::testing::TempDir* BinaryManifestTest::flow_ = nullptr;
+nlohmann::json* BinaryManifestTest::flow_manifest_ = nullptr;
+
+TEST_F(BinaryManifestTest, RealBinaryOfTheFlowIsAccepted) {
+  const auto binary = write(real_manifest());
+  const BinaryManifest checked = check_binary_manifest(binary, host_manifest_expectation(intel_));
+  EXPECT_EQ(checked.file, binary.string() + ".json");
+  EXPECT_EQ(checked.parameters.at("RF_K"), RF_K);
+  EXPECT_EQ(checked.parameters.at("RF_DOT_SPACINGS").size(), static_cast<std::size_t>(RF_DOT_SPACING_COUNT));
+  EXPECT_EQ(checked.parameters.at("RF_DOT_SPACINGS").back(), RF_MAX_DOT_SPACING);
+}
+
+TEST_F(BinaryManifestTest, StandInOutputIsRefused) {
+  const auto binary = write(*flow_manifest_);
+  EXPECT_THAT(refusal(binary, "stand_in"), HasSubstr("stand-in"));
+}
+
+TEST_F(BinaryManifestTest, WrongKIsRefusedWithBothValues) {
+  auto manifest = real_manifest();
+  manifest["parameters"]["RF_K"] = RF_K * 2;
+  const std::string message = refusal(write(manifest), "parameters.RF_K");
+  EXPECT_THAT(message, HasSubstr("expected " + std::to_string(RF_K)));
+  EXPECT_THAT(message, HasSubstr("found " + std::to_string(RF_K * 2)));
+}
+
+// The flow configured for another K writes that K into its header and manifest: the host, built for RF_K, refuses it.
+TEST_F(BinaryManifestTest, FlowBuiltForAnotherKIsRefused) {
+  const rfrecon::testing::TempDir other("manifest_flow_k");
+  auto manifest = run_flow(other.path(), "-DRFRECON_K=" + std::to_string(RF_K * 2));
+  manifest["stand_in"] = false;
+  const std::string message = refusal(write(manifest), "parameters.RF_K");
+  EXPECT_THAT(message, HasSubstr("found " + std::to_string(RF_K * 2)));
+}
+
+TEST_F(BinaryManifestTest, WrongInterleaveIsRefused) {
+  auto manifest = real_manifest();
+  manifest["parameters"]["RF_ROW_INTERLEAVE"] = RF_ROW_INTERLEAVE + 1;
+  (void)refusal(write(manifest), "parameters.RF_ROW_INTERLEAVE");
+}
+
+TEST_F(BinaryManifestTest, OtherDotSpacingsAreRefused) {
+  auto manifest = real_manifest();
+  manifest["parameters"]["RF_DOT_SPACINGS"] = {4, 8};
+  (void)refusal(write(manifest), "parameters.RF_DOT_SPACINGS");
+}
+
+TEST_F(BinaryManifestTest, MissingOrUnknownParameterIsRefused) {
+  auto manifest = real_manifest();
+  manifest["parameters"].erase("RF_MAX_ROW_WIDTH");
+  EXPECT_THAT(refusal(write(manifest), "parameters.RF_MAX_ROW_WIDTH"), HasSubstr("missing"));
+  manifest = real_manifest();
+  manifest["parameters"]["RF_NEW"] = 1;
+  (void)refusal(write(manifest), "parameters.RF_NEW");
+}
+
+TEST_F(BinaryManifestTest, OtherSourcesAreRefused) {
+  auto manifest = real_manifest();
+  std::string hash = manifest["source_sha256"];
+  hash[0] = hash[0] == '0' ? '1' : '0';
+  manifest["source_sha256"] = hash;
+  EXPECT_THAT(refusal(write(manifest), "source_sha256"), HasSubstr(std::string(embedded_kernel_sources_sha256())));
+}
+
+TEST_F(BinaryManifestTest, MissingKernelIsRefused) {
+  auto manifest = real_manifest();
+  auto& kernels = manifest["kernels"];
+  kernels.erase(std::find(kernels.begin(), kernels.end(), "dot_frame_single"));
+  EXPECT_THAT(refusal(write(manifest), "kernels"), HasSubstr("dot_frame_single"));
+}
+
+TEST_F(BinaryManifestTest, OtherTargetMacroIsRefused) {
+  const auto binary = write(real_manifest());
+  DeviceInfo xilinx;
+  xilinx.xilinx_fpga = true;
+  try {
+    (void)check_binary_manifest(binary, host_manifest_expectation(xilinx));
+    FAIL() << "an Intel binary accepted for a Xilinx board";
+  } catch (const BinaryManifestError& error) {
+    EXPECT_EQ(error.field(), "target_macro");
+    EXPECT_THAT(error.what(), HasSubstr("RF_TARGET_XILINX_FPGA"));
+  }
+}
+
+TEST_F(BinaryManifestTest, ManifestOfAnotherBinaryIsRefused) {
+  auto manifest = real_manifest();
+  const auto binary = write(manifest);
+  std::filesystem::rename(binary, temp_.path() / "renamed.aocx");
+  std::filesystem::rename(binary.string() + ".json", temp_.path() / "renamed.aocx.json");
+  (void)refusal(temp_.path() / "renamed.aocx", "binary");
+}
+
+TEST_F(BinaryManifestTest, MissingManifestIsRefused) {
+  const auto binary = temp_.path() / "board.aocx";
+  std::ofstream(binary) << "binary";
+  EXPECT_THAT(refusal(binary, ""), HasSubstr("missing"));
+}
+
+TEST_F(BinaryManifestTest, MalformedManifestIsRefused) {
+  const std::string truncated = real_manifest().dump().substr(0, 40);
+  EXPECT_THAT(refusal(write(real_manifest(), truncated), ""), HasSubstr("not valid JSON"));
+  EXPECT_THAT(refusal(write(real_manifest(), "[1, 2]"), ""), HasSubstr("not a JSON object"));
+  auto manifest = real_manifest();
+  manifest.erase("tool_version");
+  EXPECT_THAT(refusal(write(manifest), "tool_version"), HasSubstr("missing"));
+  manifest = real_manifest();
+  manifest["stand_in"] = "no";
+  EXPECT_THAT(refusal(write(manifest), "stand_in"), HasSubstr("true or false"));
+  manifest = real_manifest();
+  manifest["kernels"] = {"axpy_single", 3};
+  (void)refusal(write(manifest), "kernels");
+}
+
+TEST_F(BinaryManifestTest, BuildOptionsMayOnlyRestateTheParameters) {
+  const BinaryManifest checked = check_binary_manifest(write(real_manifest()), host_manifest_expectation(intel_));
+  check_options_match_manifest(checked, "");
+  check_options_match_manifest(checked, "-DRF_K=" + std::to_string(RF_K));
+  const auto refused = [&](const std::string& options, const std::string& field) {
+    try {
+      check_options_match_manifest(checked, options);
+      ADD_FAILURE() << options << " accepted";
+    } catch (const BinaryManifestError& error) {
+      EXPECT_EQ(error.field(), field) << error.what();
+      EXPECT_THAT(error.what(), HasSubstr(options));
+    }
+  };
+  refused("-DRF_K=" + std::to_string(RF_K + 1), "parameters.RF_K");
+  refused("-DRF_OTHER=1", "parameters");
+  refused("-cl-fast-relaxed-math", "parameters");
+}
+
+TEST_F(BinaryManifestTest, DirectoryMustHoldExactlyOneBinaryWithManifest) {
+  std::ofstream(temp_.path() / "emconfig.json") << "{}";  // an emulation file, no binary beside it
+  try {
+    (void)find_board_binary(temp_.path());
+    FAIL() << "a directory without a binary accepted";
+  } catch (const BinaryManifestError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("no kernel binary"));
+  }
+  const auto binary = write(real_manifest());
+  EXPECT_EQ(find_board_binary(temp_.path()), binary);
+  auto other = real_manifest();
+  other["binary"] = "rfrecon_520n.aocx";
+  (void)write(other);
+  try {
+    (void)find_board_binary(temp_.path());
+    FAIL() << "two binaries accepted";
+  } catch (const BinaryManifestError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("rfrecon_520n.aocx"));
+    EXPECT_THAT(error.what(), HasSubstr(binary.filename().string()));
+  }
+}
+
+}  // namespace
+}  // namespace rfrecon::cl

@@ -1,0 +1,212 @@
+#!/usr/bin/env python3
+"""Checks one board preset's hw/ flow with the stand-in vendor compilers of tests/fpga/bin/ (ctest fpga_flow_<board>).
+
+In a scratch build directory: configures hw/ for the board, builds `all` (no vendor tool may run), then each FPGA
+target, and checks the logged aoc / v++ command lines (every kernel file, the board or platform, the -D target macro,
+the include path of the generated parameters header, the link configuration), the header's default values, the
+manifest beside each binary, the link configuration's memory banks (every
+global buffer of every linked kernel), and that a tool version outside the supported range is refused at configure.
+
+  check_flow.py --board NAME --root SOURCE_DIR --scratch DIR [--cmake PATH]
+"""
+import argparse
+import hashlib
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+BIN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "bin")
+KERNEL = re.compile(r"__kernel\s+void\s+(\w+)\s*\(([^)]*)\)")
+INTEL = {"520n": "p520_max_sg280l", "pac_a10": "pac_a10", "d5005": "pac_s10_dc"}
+XILINX = {"u250": "xilinx_u250_gen3x16_xdma_4_1_202210_1", "u280": "xilinx_u280_gen3x16_xdma_1_202211_1"}
+
+
+class Failure(Exception):
+    pass
+
+
+def expect(condition, message):
+    if not condition:
+        raise Failure(message)
+
+
+# The parameters header's defaults (cmake/EmbedKernelsParams.cmake), as the manifest must record them.
+PARAMETERS = {"RF_K": 8, "RF_ROW_INTERLEAVE": 8, "RF_MAX_ROW_WIDTH": 4096, "RF_DOT_SPACINGS": list(range(2, 65))}
+PARAMS_H = os.path.join("common", "params.h")
+
+
+def kernels_of(kernel_dir, generated_dir):
+    """{relative .cl path: {kernel name: [global buffer argument names]}} and the manifest's source hash: SHA-256 over
+    "path\\n<SHA-256 of the file>\\n" of every .cl and .h file of kernels/ and the generated common/params.h, sorted."""
+    files, listing = {}, ""
+    for d, _, names in os.walk(kernel_dir):
+        for name in names:
+            path = os.path.join(d, name)
+            relative = os.path.relpath(path, kernel_dir)
+            if name.endswith(".cl"):
+                with open(path, encoding="utf-8") as f:
+                    files[relative] = {m[1]: [re.findall(r"(\w+)\s*$", a)[0] for a in m[2].split(",")
+                                              if "__global" in a] for m in KERNEL.finditer(f.read())}
+    sources = [os.path.relpath(os.path.join(d, n), kernel_dir) for d, _, names in os.walk(kernel_dir)
+               for n in names if n.endswith((".cl", ".h"))]
+    for relative in sorted(sources + [PARAMS_H]):
+        with open(os.path.join(generated_dir if relative == PARAMS_H else kernel_dir, relative), "rb") as f:
+            listing += f"{relative}\n{hashlib.sha256(f.read()).hexdigest()}\n"
+    return files, hashlib.sha256(listing.encode()).hexdigest()
+
+
+def run(command, env, must_pass=True):
+    result = subprocess.run(command, env=env, capture_output=True, text=True, check=False)
+    if must_pass and result.returncode != 0:
+        raise Failure(f"{' '.join(command)} exited {result.returncode}:\n{result.stdout}{result.stderr}")
+    return result
+
+
+def logged(log):
+    if not os.path.exists(log):
+        return []
+    with open(log, encoding="utf-8") as f:
+        lines = [json.loads(line) for line in f]
+    os.remove(log)
+    return lines
+
+
+def check_manifest(binary, target, tool, macro, device, board, kernels, source_hash):
+    expect(os.path.isfile(binary), f"{binary} not built")
+    with open(binary + ".json", encoding="utf-8") as f:
+        manifest = json.load(f)
+    wanted = {"binary": os.path.basename(binary), "board": board, "device": device, "target": target, "tool": tool,
+              "target_macro": macro, "stand_in": True, "source_sha256": source_hash,
+              "parameters": PARAMETERS}
+    for key, value in wanted.items():
+        expect(manifest.get(key) == value, f"{binary}.json: {key} is {manifest.get(key)!r}, expected {value!r}")
+    expect(sorted(manifest["kernels"]) == sorted(kernels), f"{binary}.json: kernels {manifest['kernels']}")
+    expect(re.fullmatch(r"\d+\.\d+(\.\d+)?", manifest["tool_version"]), f"tool_version {manifest['tool_version']}")
+
+
+def check_params_header(generated_dir):
+    """The generated header defines each parameter with its default (the dot spacings as an initializer list)."""
+    with open(os.path.join(generated_dir, PARAMS_H), encoding="utf-8") as f:
+        text = f.read()
+    for name, value in PARAMETERS.items():
+        wanted = "{" + ", ".join(map(str, value)) + "}" if isinstance(value, list) else str(value)
+        expect(re.search(rf"^#define {name} {re.escape(wanted)}$", text, re.M), f"{PARAMS_H}: {name} is not {wanted}")
+
+
+def includes_of(line):
+    return [line[i + 1] for i, a in enumerate(line) if a == "-I"]
+
+
+def check_intel(args, build, env, files, source_hash):
+    device, kernel_dir = INTEL[args.board], os.path.join(args.root, "kernels")
+    generated_dir = os.path.join(build, "generated", "kernels")
+    cl_paths = sorted(os.path.join(kernel_dir, f) for f in files)
+    every_kernel = [k for names in files.values() for k in names]
+    for target, flags, binary in (("emulator", ["-march=emulator"], f"rfrecon_{args.board}_emulator.aocx"),
+                                  ("report", ["-rtl", "-report"], f"rfrecon_{args.board}_report.aocr"),
+                                  ("hardware", [], f"rfrecon_{args.board}.aocx")):
+        run([args.cmake, "--build", build, "--target", f"rfrecon_fpga_{target}"], env)
+        calls = logged(env["RFRECON_STANDIN_LOG"])
+        expect(len(calls) == 1 and calls[0][0] == "aoc", f"{target}: expected one aoc call, got {calls}")
+        line = calls[0][1:]
+        for flag in flags + [f"-board={device}", "-DRF_TARGET_INTEL_FPGA"]:
+            expect(flag in line, f"{target}: {flag} missing from aoc {' '.join(line)}")
+        expect(not ({"-march=emulator", "-rtl", "-report"} - set(flags)) & set(line), f"{target}: stray flag in {line}")
+        expect(sorted(a for a in line if a.endswith(".cl")) == cl_paths, f"{target}: not every kernel file in {line}")
+        expect(includes_of(line) == [kernel_dir, generated_dir], f"{target}: include paths {includes_of(line)}")
+        expect(not [a for a in line if a.startswith("-DRF_K") or a.startswith("-DRF_ROW")],
+               f"{target}: parameters given as -D options, which would bypass the header: {line}")
+        check_manifest(os.path.join(build, binary), target, "aoc", "RF_TARGET_INTEL_FPGA", device, args.board,
+                       every_kernel, source_hash)
+
+
+def check_link_config(path, single):
+    """Every global buffer of every single work-item entry has a memory bank; nothing else is named."""
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+    banks = dict(re.findall(r"^sp=(\w+\.\w+):(\S+)$", text, re.M))
+    units = set(re.findall(r"^nk=(\w+):1:(\w+)$", text, re.M))
+    expect(units == {(k, f"{k}_1") for k in single}, f"{path}: compute units {sorted(units)}")
+    wanted = {f"{k}_1.{a}" for k, buffers in single.items() for a in buffers}
+    expect(set(banks) == wanted,
+           f"{path}: missing banks {sorted(wanted - set(banks))}, extra {sorted(set(banks) - wanted)}")
+
+
+def check_xilinx(args, build, env, files, source_hash):
+    device, kernel_dir = XILINX[args.board], os.path.join(args.root, "kernels")
+    generated_dir = os.path.join(build, "generated", "kernels")
+    config = os.path.join(args.root, "hw", "boards", f"{args.board}.cfg")
+    single = {k: buffers for names in files.values() for k, buffers in names.items() if k.endswith("_single")}
+    file_of = {k: os.path.join(kernel_dir, f) for f, names in files.items() for k in names}
+    check_link_config(config, single)
+    for target, binary in (("sw_emu", f"rfrecon_{args.board}_sw_emu.xclbin"),
+                           ("hw_emu", f"rfrecon_{args.board}_hw_emu.xclbin"), ("hw", f"rfrecon_{args.board}.xclbin")):
+        run([args.cmake, "--build", build, "--target", f"rfrecon_fpga_{target}"], env)
+        calls = logged(env["RFRECON_STANDIN_LOG"])
+        compiles = [c[1:] for c in calls if c[:2] == ["v++", "-c"]]
+        links = [c[1:] for c in calls if c[:2] == ["v++", "-l"]]
+        expect(len(links) == 1, f"{target}: expected one v++ -l, got {links}")
+        compiled = {}
+        for line in compiles + links:
+            for flag in ("-t", target), ("--platform", device):
+                expect(line[line.index(flag[0]) + 1] == flag[1], f"{target}: {flag} missing from v++ {' '.join(line)}")
+        for line in compiles:
+            expect("-DRF_TARGET_XILINX_FPGA" in line, f"{target}: -DRF_TARGET_XILINX_FPGA missing from v++ {line}")
+            expect(includes_of(line) == [kernel_dir, generated_dir], f"{target}: include paths {includes_of(line)}")
+            kernel = line[line.index("-k") + 1]
+            expect(line[-1] == file_of.get(kernel), f"{target}: {kernel} compiled from {line[-1]}")
+            compiled[kernel] = line[line.index("-o") + 1]
+        expect(set(compiled) == set(single), f"{target}: compiled {sorted(compiled)}, expected {sorted(single)}")
+        link = links[0]
+        expect(link[link.index("--config") + 1] == config, f"{target}: link config is not {config}")
+        expect(sorted(a for a in link if a.endswith(".xo")) == sorted(compiled.values()), f"{target}: link inputs")
+        # emconfig.json is made once, by the first emulation target built, and never for hardware.
+        emconfig = [c for c in calls if c[0] == "emconfigutil"]
+        expect(len(emconfig) == (1 if target == "sw_emu" else 0), f"{target}: emconfigutil {emconfig}")
+        check_manifest(os.path.join(build, binary), target, "v++", "RF_TARGET_XILINX_FPGA", device, args.board,
+                       list(single), source_hash)
+    run([args.cmake, "--build", build, "--target", "rfrecon_fpga_report"], env)
+    expect(logged(env["RFRECON_STANDIN_LOG"]) == [], "report: the hw .xo files are those of rfrecon_fpga_hw")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--board", required=True, choices=sorted(INTEL) + sorted(XILINX))
+    parser.add_argument("--root", required=True)
+    parser.add_argument("--scratch", required=True)
+    parser.add_argument("--cmake", default="cmake")
+    args = parser.parse_args()
+    args.root = os.path.abspath(args.root)
+    build = os.path.abspath(args.scratch)
+    shutil.rmtree(build, ignore_errors=True)
+    os.makedirs(build)
+    env = dict(os.environ, RFRECON_STANDIN_LOG=os.path.join(build, "standin.log"))
+    env.pop("RFRECON_STANDIN_VERSION", None)
+    tools = ([f"-DRFRECON_AOC={BIN}/aoc"] if args.board in INTEL else
+             [f"-DRFRECON_VXX={BIN}/v++", f"-DRFRECON_EMCONFIGUTIL={BIN}/emconfigutil"])
+    configure = [args.cmake, "-S", os.path.join(args.root, "hw"), f"-DRFRECON_FPGA_BOARD={args.board}"] + tools
+    try:
+        run(configure + ["-B", os.path.join(build, "flow")], env)
+        generated_dir = os.path.join(build, "flow", "generated", "kernels")
+        check_params_header(generated_dir)
+        files, source_hash = kernels_of(os.path.join(args.root, "kernels"), generated_dir)
+        run([args.cmake, "--build", os.path.join(build, "flow")], env)
+        expect(logged(env["RFRECON_STANDIN_LOG"]) == [], "`all` ran a vendor tool: synthesis must never be in all")
+        (check_intel if args.board in INTEL else check_xilinx)(args, os.path.join(build, "flow"), env, files,
+                                                              source_hash)
+        too_new = dict(env, RFRECON_STANDIN_VERSION="23.1.0" if args.board in INTEL else "2023.1")
+        refused = run(configure + ["-B", os.path.join(build, "too_new")], too_new, must_pass=False)
+        expect(refused.returncode != 0 and "supports" in refused.stderr, f"tool 23.1 accepted:\n{refused.stderr}")
+    except Failure as failure:
+        print(f"fpga_flow_{args.board}: FAILED: {failure}")
+        return 1
+    shutil.rmtree(build)
+    print(f"fpga_flow_{args.board}: ok")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

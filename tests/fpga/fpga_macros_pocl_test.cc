@@ -1,0 +1,69 @@
+// The single work-item depth kernels built with each FPGA target macro (RF_TARGET_INTEL_FPGA, RF_TARGET_XILINX_FPGA:
+// the vendor attributes and pragmas of kernels/common/target.h, which PoCL's clang ignores) and run on the first
+// OpenCL device (PoCL in CI) equal their NDRange twins built without a macro, on the row tiles of the kernel tests.
+// Also with an interleave that does not divide the tiles' rows (3). What this shows: the macros and the interleave
+// leave the kernels' arithmetic unchanged; not what a vendor compiler makes of them.
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "host/cl/device_selection.h"
+#include "host/depth/row_solvers.h"
+#include "tests/depth/row_solver_inputs.h"
+
+namespace rfrecon::depth {
+namespace {
+
+using testing::expect_close;
+
+struct Build {
+  const char* name;     // the test's name
+  const char* options;  // the single work-item program's build options
+};
+
+class FpgaMacrosOnPocl : public ::testing::TestWithParam<Build> {
+ protected:
+  void SetUp() override {
+    devices_ = cl::open_devices("all");
+    rows_ = testing::kernel_test_rows();
+  }
+  std::string options() const { return GetParam().options; }
+  std::vector<cl::DeviceContext> devices_;
+  cl::ProgramCache programs_;
+  RectifiedRows rows_;
+};
+
+TEST_P(FpgaMacrosOnPocl, IntegrationSingleEqualsNdRange) {
+  const IntegrationOptions options{3};
+  cl::DeviceContext& device = devices_.front();
+  for (const auto& [begin, end] : {std::pair{0, 5}, std::pair{5, rows_.height}}) {
+    expect_close(integrate_rows_opencl(device, programs_, KernelEntry::kSingleWorkItem, rows_, options, begin, end,
+                                       this->options()),
+                 integrate_rows_opencl(device, programs_, KernelEntry::kNdRange, rows_, options, begin, end));
+  }
+}
+
+TEST_P(FpgaMacrosOnPocl, FusionSingleEqualsNdRange) {
+  const FusionOptions options;
+  cl::DeviceContext& device = devices_.front();
+  const auto start = integrate_rows_reference(rows_, IntegrationOptions{3}, 0, rows_.height);
+  const auto split = start.begin() + 3 * rows_.width;
+  const std::vector<float> start_first(start.begin(), split), start_second(split, start.end());
+  for (const auto& [begin, end, z] : {std::tuple{0, 3, start_first}, std::tuple{3, rows_.height, start_second}}) {
+    expect_close(fuse_rows_opencl(device, programs_, KernelEntry::kSingleWorkItem, rows_, z, options, begin, end,
+                                  this->options()),
+                 fuse_rows_opencl(device, programs_, KernelEntry::kNdRange, rows_, z, options, begin, end));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Targets, FpgaMacrosOnPocl,
+                         ::testing::Values(Build{"Intel", "-DRF_TARGET_INTEL_FPGA"},
+                                           Build{"Xilinx", "-DRF_TARGET_XILINX_FPGA"},
+                                           Build{"IntelInterleave3", "-DRF_TARGET_INTEL_FPGA -DRF_ROW_INTERLEAVE=3"}),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace rfrecon::depth
