@@ -35,6 +35,36 @@ RF_INLINE void rf_group_betas(RfRectifiedRig rig, int first_row, int r0, float* 
   for (int k = 0; k < RF_ROW_INTERLEAVE; ++k) betas[k] = ((float)(first_row + r0 + k) - rig.cy) / rig.f;
 }
 
+// Copies a group of `group` rows of the tile (starting at the pointers given) into the on-chip buffers, z too when
+// z_start is not null (the fusion's starting depth), in pipelined loops of fixed trip count.
+RF_INLINE void rf_load_row_group(int group, int width, int proj_width, RF_GLOBAL const float* e_cam,
+                                 RF_GLOBAL const float* e_proj, RF_GLOBAL const float* z_tri,
+                                 RF_GLOBAL const unsigned char* runs, RF_GLOBAL const float* z_start, float* e_cam_rows,
+                                 float* e_proj_rows, float* z_tri_rows, unsigned char* run_rows, float* z_rows) {
+  RF_PIPELINE_II(1)
+  for (int i = 0; i < group * width; ++i) {
+    RF_HLS_PIPELINE
+    e_cam_rows[i] = e_cam[i];
+    z_tri_rows[i] = z_tri[i];
+    run_rows[i] = runs[i];
+    if (z_start) z_rows[i] = z_start[i];
+  }
+  RF_PIPELINE_II(1)
+  for (int i = 0; i < group * proj_width; ++i) {
+    RF_HLS_PIPELINE
+    e_proj_rows[i] = e_proj[i];
+  }
+}
+
+// Writes the group's depths back, once.
+RF_INLINE void rf_store_row_group(int group, int width, const float* z_rows, RF_GLOBAL float* z) {
+  RF_PIPELINE_II(1)
+  for (int i = 0; i < group * width; ++i) {
+    RF_HLS_PIPELINE
+    z[i] = z_rows[i];
+  }
+}
+
 // Integration of the tile's rows (layout of kernels/depth/integrate.cl), the same arithmetic per row as
 // rf_integrate_row.
 RF_INLINE void rf_integrate_rows_interleaved(RfRectifiedRig rig, int first_row, int rows, int width, int proj_width,
@@ -46,18 +76,8 @@ RF_INLINE void rf_integrate_rows_interleaved(RfRectifiedRig rig, int first_row, 
   for (int r0 = 0; r0 < rows; r0 += RF_ROW_INTERLEAVE) {
     const int group = rows - r0 < RF_ROW_INTERLEAVE ? rows - r0 : RF_ROW_INTERLEAVE;
     const size_t base = (size_t)r0 * (size_t)width, proj_base = (size_t)r0 * (size_t)proj_width;
-    RF_PIPELINE_II(1)
-    for (int i = 0; i < group * width; ++i) {
-      RF_HLS_PIPELINE
-      e_cam_rows[i] = e_cam[base + i];
-      z_tri_rows[i] = z_tri[base + i];
-      run_rows[i] = runs[base + i];
-    }
-    RF_PIPELINE_II(1)
-    for (int i = 0; i < group * proj_width; ++i) {
-      RF_HLS_PIPELINE
-      e_proj_rows[i] = e_proj[proj_base + i];
-    }
+    rf_load_row_group(group, width, proj_width, e_cam + base, e_proj + proj_base, z_tri + base, runs + base, 0,
+                      e_cam_rows, e_proj_rows, z_tri_rows, run_rows, z_rows);
     float betas[RF_ROW_INTERLEAVE];
     rf_group_betas(rig, first_row, r0, betas);
     for (int pass = 0; pass < passes; ++pass) {
@@ -82,11 +102,7 @@ RF_INLINE void rf_integrate_rows_interleaved(RfRectifiedRig rig, int first_row, 
       }
       for (int k = 0; k < group; ++k) RF_ON_CHIP(rf_close_run)(&states[k], z_rows + k * width, pass + 1 < passes);
     }
-    RF_PIPELINE_II(1)
-    for (int i = 0; i < group * width; ++i) {
-      RF_HLS_PIPELINE
-      z[base + i] = z_rows[i];
-    }
+    rf_store_row_group(group, width, z_rows, z + base);
   }
 }
 
@@ -104,19 +120,8 @@ RF_INLINE void rf_fuse_rows_interleaved(RfRectifiedRig rig, int first_row, int r
   for (int r0 = 0; r0 < rows; r0 += RF_ROW_INTERLEAVE) {
     const int group = rows - r0 < RF_ROW_INTERLEAVE ? rows - r0 : RF_ROW_INTERLEAVE;
     const size_t base = (size_t)r0 * (size_t)width, proj_base = (size_t)r0 * (size_t)proj_width;
-    RF_PIPELINE_II(1)
-    for (int i = 0; i < group * width; ++i) {
-      RF_HLS_PIPELINE
-      e_cam_rows[i] = e_cam[base + i];
-      z_tri_rows[i] = z_tri[base + i];
-      run_rows[i] = runs[base + i];
-      z_rows[i] = z[base + i];
-    }
-    RF_PIPELINE_II(1)
-    for (int i = 0; i < group * proj_width; ++i) {
-      RF_HLS_PIPELINE
-      e_proj_rows[i] = e_proj[proj_base + i];
-    }
+    rf_load_row_group(group, width, proj_width, e_cam + base, e_proj + proj_base, z_tri + base, runs + base, z + base,
+                      e_cam_rows, e_proj_rows, z_tri_rows, run_rows, z_rows);
     float betas[RF_ROW_INTERLEAVE];
     rf_group_betas(rig, first_row, r0, betas);
     for (int iteration = 0; iteration < iterations; ++iteration) {
@@ -161,11 +166,7 @@ RF_INLINE void rf_fuse_rows_interleaved(RfRectifiedRig rig, int first_row, int r
         }
       }
     }
-    RF_PIPELINE_II(1)
-    for (int i = 0; i < group * width; ++i) {
-      RF_HLS_PIPELINE
-      z[base + i] = z_rows[i];
-    }
+    rf_store_row_group(group, width, z_rows, z + base);
   }
 }
 
