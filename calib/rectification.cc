@@ -2,6 +2,7 @@
 #include "calib/rectification.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -19,9 +20,10 @@ constexpr double kMinBaselineMm = 1e-2;
 // sin of the smallest angle between the baseline and the mean viewing direction.
 constexpr double kMinBaselineAngleSin = 0.1;
 
-// Bounding box of a device's image border in a rectified frame at focal length f and principal point 0.
+// Bounding box of a device's image border in a rectified frame at focal length f and principal point 0; `key` names
+// the device's distortion coefficients, which fail when they send a border pixel to no finite point.
 cv::Rect2d rectified_extent(const cv::Mat& K, const cv::Mat& dist, const cv::Matx33d& rect_from_device, cv::Size size,
-                            double f) {
+                            double f, const char* key) {
   std::vector<cv::Point2d> border, rectified;
   for (int x = 0; x < size.width; ++x) {
     border.emplace_back(x, 0.0);
@@ -35,6 +37,10 @@ cv::Rect2d rectified_extent(const cv::Mat& K, const cv::Mat& dist, const cv::Mat
   cv::undistortPoints(border, rectified, K, dist, cv::Mat(rect_from_device), unit_projection, undistort_criteria());
   double x0 = rectified[0].x, x1 = x0, y0 = rectified[0].y, y1 = y0;
   for (const auto& p : rectified) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
+      throw InputError(std::string("key '") + key +
+                       "': the distortion model sends the image border to no finite point");
+    }
     x0 = std::min(x0, p.x);
     x1 = std::max(x1, p.x);
     y0 = std::min(y0, p.y);
@@ -83,12 +89,18 @@ RowRectification rectify_rig(const StereoRig& rig) {
   out.f_px = std::max(largest_focal(rig.camera_matrix), largest_focal(rig.projector_matrix));
 
   const cv::Rect2d camera_box =
-      rectified_extent(rig.camera_matrix, rig.dist_coeffs, out.rect_from_cam, rig.camera_size, out.f_px);
+      rectified_extent(rig.camera_matrix, rig.dist_coeffs, out.rect_from_cam, rig.camera_size, out.f_px, "dist_coeffs");
   const cv::Rect2d projector_box = rectified_extent(rig.projector_matrix, rig.projector_dist_coeffs, out.rect_from_proj,
-                                                    rig.projector_size, out.f_px);
+                                                    rig.projector_size, out.f_px, "projector_dist_coeffs");
   if (!(std::max({camera_box.width, camera_box.height, projector_box.width}) < kMaxRectifiedSide)) {
     fail("R", "the rectified images would be larger than " + std::to_string(kMaxRectifiedSide) +
                   " pixels (devices at a grazing angle to each other?)");
+  }
+  // 2^24: offsets still exact to a pixel's 2^-29 in double, so the sizes below cannot cancel to nonsense.
+  if (!(std::max({std::abs(camera_box.x), std::abs(camera_box.y), std::abs(projector_box.x)}) < double{1 << 24})) {
+    throw InputError(
+        "the rectified images would lie more than 2^24 pixels from their principal points (a principal "
+        "point far outside its image?)");
   }
   // Whole pixels of margin so that the border pixels' centres fall inside the images.
   out.cx_cam_px = -std::floor(camera_box.x);

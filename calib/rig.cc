@@ -9,6 +9,7 @@
 #include "host/core/atomic_file.h"
 #include "host/core/errors.h"
 #include "host/core/limits.h"
+#include "host/core/opencv_yaml.h"
 
 namespace rfrecon::calib {
 
@@ -168,13 +169,7 @@ void write_rig(const StereoRig& rig, const fs::path& file) {
 namespace {
 StereoRig read_rig_file(const fs::path& file) {
   const std::string name = file.string();
-  cv::FileStorage fs;
-  try {
-    fs.open(name, cv::FileStorage::READ | cv::FileStorage::FORMAT_YAML);
-  } catch (const cv::Exception& error) {
-    throw InputError(name + ": not a readable OpenCV YAML file (" + error.err + ")");
-  }
-  if (!fs.isOpened()) throw InputError("cannot read rig file " + name);
+  const cv::FileStorage fs = open_opencv_yaml(file);
   if (!fs["format"].empty()) {
     if (!fs["format"].isString() || static_cast<std::string>(fs["format"]) != kRigFormat) {
       throw InputError(name + ": key 'format' must be '" + kRigFormat + "'");

@@ -13,7 +13,6 @@
 namespace rfrecon::sim {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 double schlick(double reflectance, double cos_angle) {
   return reflectance + (1.0 - reflectance) * std::pow(1.0 - cos_angle, 5.0);
@@ -21,7 +20,7 @@ double schlick(double reflectance, double cos_angle) {
 
 double blinn_phong_specular(const Brdf& b, const Eigen::Vector3d& wi, const Eigen::Vector3d& wo) {
   const Eigen::Vector3d h = (wi + wo).normalized();
-  return b.specular * (b.exponent + 1.0) / (8.0 * kPi) * std::pow(h.z(), b.exponent) / std::max(wi.z(), wo.z());
+  return b.specular * (b.exponent + 1.0) / (8.0 * EIGEN_PI) * std::pow(h.z(), b.exponent) / std::max(wi.z(), wo.z());
 }
 
 double ward_specular(const Brdf& b, const Eigen::Vector3d& wi, const Eigen::Vector3d& wo) {
@@ -29,7 +28,7 @@ double ward_specular(const Brdf& b, const Eigen::Vector3d& wi, const Eigen::Vect
   const double hx = h.x() / b.alpha_x;
   const double hy = h.y() / b.alpha_y;
   const double hz2 = h.z() * h.z();
-  return b.specular / (kPi * b.alpha_x * b.alpha_y) * h.squaredNorm() / (hz2 * hz2) *
+  return b.specular / (EIGEN_PI * b.alpha_x * b.alpha_y) * h.squaredNorm() / (hz2 * hz2) *
          std::exp(-(hx * hx + hy * hy) / hz2);
 }
 
@@ -38,11 +37,11 @@ double ashikhmin_shirley(const Brdf& b, double diffuse, const Eigen::Vector3d& w
   const double cos_i = wi.z();
   const double cos_o = wo.z();
   const double k_dot_h = wi.dot(h);
-  const double rho_diffuse = 28.0 * diffuse / (23.0 * kPi) * (1.0 - b.specular) *
+  const double rho_diffuse = 28.0 * diffuse / (23.0 * EIGEN_PI) * (1.0 - b.specular) *
                              (1.0 - std::pow(1.0 - cos_i / 2.0, 5.0)) * (1.0 - std::pow(1.0 - cos_o / 2.0, 5.0));
   const double h_perp2 = h.x() * h.x() + h.y() * h.y();
   const double exponent = h_perp2 > 0.0 ? (b.n_u * h.x() * h.x() + b.n_v * h.y() * h.y()) / h_perp2 : 0.0;
-  const double rho_specular = std::sqrt((b.n_u + 1.0) * (b.n_v + 1.0)) / (8.0 * kPi) * std::pow(h.z(), exponent) /
+  const double rho_specular = std::sqrt((b.n_u + 1.0) * (b.n_v + 1.0)) / (8.0 * EIGEN_PI) * std::pow(h.z(), exponent) /
                               (k_dot_h * std::max(cos_i, cos_o)) * schlick(b.specular, k_dot_h);
   return rho_diffuse + rho_specular;
 }
@@ -88,11 +87,11 @@ double evaluate(const Brdf& b, double diffuse, const Eigen::Vector3d& wi, const 
   if (wi.z() <= 0.0 || wo.z() <= 0.0) return 0.0;
   switch (b.model) {
     case BrdfModel::kLambert:
-      return diffuse / kPi;
+      return diffuse / EIGEN_PI;
     case BrdfModel::kBlinnPhong:
-      return diffuse / kPi + blinn_phong_specular(b, wi, wo);
+      return diffuse / EIGEN_PI + blinn_phong_specular(b, wi, wo);
     case BrdfModel::kWard:
-      return diffuse / kPi + ward_specular(b, wi, wo);
+      return diffuse / EIGEN_PI + ward_specular(b, wi, wo);
     case BrdfModel::kAshikhminShirley:
       return ashikhmin_shirley(b, diffuse, wi, wo);
   }

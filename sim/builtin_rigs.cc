@@ -58,13 +58,13 @@ json wide_baseline() {
             {"pose", {{"position", {-280.0, -60.0, 20.0}}, {"look_at", {0.0, 0.0, 600.0}}}}}}};
 }
 
-struct Builtin {
+struct BuiltinRig {
   const char* name;
   const char* description;
   json (*make)();
 };
 
-const Builtin kRigs[] = {
+const BuiltinRig kRigs[] = {
     {"projector-above",
      "640x512 camera, 640x480 projector 170 mm above it with its lens offset (principal point near the top edge)",
      projector_above},

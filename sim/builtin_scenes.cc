@@ -124,13 +124,13 @@ json board_plane() {
   return scene;
 }
 
-struct Builtin {
+struct BuiltinScene {
   const char* name;
   const char* description;
   json (*make)();
 };
 
-const Builtin kBuiltins[] = {
+const BuiltinScene kBuiltins[] = {
     {"cube-anisotropic", "60 mm cube at 600 mm, Ward anisotropic brushed metal, three faces visible; wall behind",
      cube_anisotropic},
     {"sphere-ward", "50 mm radius sphere at 600 mm, Ward anisotropic; wall behind", sphere_ward},

@@ -12,7 +12,6 @@
 namespace rfrecon::sim {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 struct Entry {
   int column;
@@ -237,7 +236,7 @@ class RowRenderer {
     const int m = options_.interreflection_samples;
     for (int k = 0; k < m; ++k) {
       const double u1 = uniform(rng), u2 = uniform(rng);
-      const double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
+      const double r = std::sqrt(u1), phi = 2.0 * EIGEN_PI * u2;
       const Eigen::Vector3d w_in = r * std::cos(phi) * hit.tangent + r * std::sin(phi) * bitangent +
                                    std::sqrt(std::max(0.0, 1.0 - u1)) * hit.normal;
       const double eps = ray_epsilon(hit.position);
@@ -247,7 +246,7 @@ class RowRenderer {
       if (!light) continue;
       // radiance of the second point toward the first, times f_r1 * cos1 / pdf with pdf = cos1 / pi
       const double reading = light->irradiance * brdf_at(scene_, *second, light->w_p, -w_in) *
-                             brdf_at(scene_, hit, w_in, w_c) * kPi * weight / m;
+                             brdf_at(scene_, hit, w_in, w_c) * EIGEN_PI * weight / m;
       if (reading > 0.0) deposit_box(row, scene_.projector.size, light->projector_px, Eigen::Vector2d::Zero(), reading);
     }
   }

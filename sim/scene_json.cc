@@ -13,7 +13,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 // Reads fields of one JSON document, naming the source and the field path in every error.
 class Reader {
@@ -90,9 +89,9 @@ Eigen::Isometry3d parse_pose(const Reader& r, const json& pose, const std::strin
   if (rotations > 1) r.fail(path, "give only one of rotation_deg, rotation_matrix, look_at");
   if (pose.contains("rotation_deg")) {
     const auto deg = r.numbers(pose, path, "rotation_deg", 3);
-    out.linear() = (Eigen::AngleAxisd(deg[2] * kPi / 180, Eigen::Vector3d::UnitZ()) *
-                    Eigen::AngleAxisd(deg[1] * kPi / 180, Eigen::Vector3d::UnitY()) *
-                    Eigen::AngleAxisd(deg[0] * kPi / 180, Eigen::Vector3d::UnitX()))
+    out.linear() = (Eigen::AngleAxisd(deg[2] * EIGEN_PI / 180, Eigen::Vector3d::UnitZ()) *
+                    Eigen::AngleAxisd(deg[1] * EIGEN_PI / 180, Eigen::Vector3d::UnitY()) *
+                    Eigen::AngleAxisd(deg[0] * EIGEN_PI / 180, Eigen::Vector3d::UnitX()))
                        .toRotationMatrix();
   } else if (pose.contains("rotation_matrix")) {
     const auto m = r.numbers(pose, path, "rotation_matrix", 9);

@@ -18,7 +18,7 @@ auto device_param(const ::cl::Device& device) {
   return value;
 }
 
-std::string trimmed(std::string text) {
+std::string without_trailing_nul_or_space(std::string text) {
   while (!text.empty() && (text.back() == '\0' || std::isspace(static_cast<unsigned char>(text.back())))) {
     text.pop_back();
   }
@@ -39,12 +39,12 @@ DeviceInfo query_device_info(const ::cl::Platform& platform, const ::cl::Device&
   info.index = index;
   std::string text;
   RF_CL_CHECK_CODE(platform.getInfo(CL_PLATFORM_NAME, &text), "clGetPlatformInfo(CL_PLATFORM_NAME)");
-  info.platform_name = trimmed(text);
+  info.platform_name = without_trailing_nul_or_space(text);
   RF_CL_CHECK_CODE(platform.getInfo(CL_PLATFORM_VENDOR, &text), "clGetPlatformInfo(CL_PLATFORM_VENDOR)");
-  info.platform_vendor = trimmed(text);
-  info.device_name = trimmed(device_param<CL_DEVICE_NAME>(device));
-  info.device_vendor = trimmed(device_param<CL_DEVICE_VENDOR>(device));
-  info.driver_version = trimmed(device_param<CL_DRIVER_VERSION>(device));
+  info.platform_vendor = without_trailing_nul_or_space(text);
+  info.device_name = without_trailing_nul_or_space(device_param<CL_DEVICE_NAME>(device));
+  info.device_vendor = without_trailing_nul_or_space(device_param<CL_DEVICE_VENDOR>(device));
+  info.driver_version = without_trailing_nul_or_space(device_param<CL_DRIVER_VERSION>(device));
   const cl_device_type type = device_param<CL_DEVICE_TYPE>(device);
   if (type & CL_DEVICE_TYPE_CPU) {
     info.kind = DeviceKind::kCpu;
@@ -58,7 +58,7 @@ DeviceInfo query_device_info(const ::cl::Platform& platform, const ::cl::Device&
   info.local_mem_bytes = device_param<CL_DEVICE_LOCAL_MEM_SIZE>(device);
   info.max_alloc_bytes = device_param<CL_DEVICE_MAX_MEM_ALLOC_SIZE>(device);
   info.max_work_group_size = device_param<CL_DEVICE_MAX_WORK_GROUP_SIZE>(device);
-  info.opencl_c_version = trimmed(device_param<CL_DEVICE_OPENCL_C_VERSION>(device));
+  info.opencl_c_version = without_trailing_nul_or_space(device_param<CL_DEVICE_OPENCL_C_VERSION>(device));
   info.fp64 = device_param<CL_DEVICE_DOUBLE_FP_CONFIG>(device) != 0;
   const std::string extensions = device_param<CL_DEVICE_EXTENSIONS>(device);
   info.fp16 = extensions.find("cl_khr_fp16") != std::string::npos;

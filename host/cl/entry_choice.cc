@@ -12,7 +12,7 @@ namespace {
 constexpr const char* kWords = "auto, ndrange, single, or one of ndrange / single per device separated by commas";
 
 // Surrounding spaces dropped, as in `--devices`.
-std::string trimmed(const std::string& text) {
+std::string without_surrounding_spaces(const std::string& text) {
   const auto first = text.find_first_not_of(' ');
   if (first == std::string::npos) return "";
   return text.substr(first, text.find_last_not_of(' ') - first + 1);
@@ -38,14 +38,14 @@ EntryChoice::EntryChoice(std::vector<KernelEntry> per_device)
     : mode_(Mode::kPerDevice), entries_(std::move(per_device)) {}
 
 EntryChoice EntryChoice::parse(const std::string& text) {
-  const std::string whole = trimmed(text);
+  const std::string whole = without_surrounding_spaces(text);
   if (whole == "auto") return EntryChoice();
   if (whole.find(',') == std::string::npos) return EntryChoice(parse_word(whole, text));
   std::vector<KernelEntry> per_device;
   std::size_t begin = 0;
   while (true) {
     const std::size_t comma = whole.find(',', begin);
-    per_device.push_back(parse_word(trimmed(whole.substr(begin, comma - begin)), text));
+    per_device.push_back(parse_word(without_surrounding_spaces(whole.substr(begin, comma - begin)), text));
     if (comma == std::string::npos) break;
     begin = comma + 1;
   }

@@ -8,7 +8,7 @@
 namespace rfrecon::depth {
 
 namespace {
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kNoValue = std::numeric_limits<float>::quiet_NaN();
 
 bool finite_point(const cv::Vec3f& p) { return std::isfinite(p[0]); }
 
@@ -37,7 +37,7 @@ bool difference(const cv::Mat& points, int x, int y, int dx, int dy, cv::Vec3f& 
 
 cv::Mat sample_rectified_depth(const std::vector<float>& z_rect, const RectifiedRows& rows, const cv::Mat& rect_cam,
                                float jump_relative) {
-  cv::Mat z_grid(rect_cam.size(), CV_32F, cv::Scalar(kNaN));
+  cv::Mat z_grid(rect_cam.size(), CV_32F, cv::Scalar(kNoValue));
   const auto z_at = [&](int u, int v) { return z_rect[static_cast<std::size_t>(v) * rows.width + u]; };
   for (int y = 0; y < rect_cam.rows; ++y) {
     for (int x = 0; x < rect_cam.cols; ++x) {
@@ -63,9 +63,9 @@ outputs::Reconstruction camera_frame_maps(const cv::Mat& z_rect_mm, const cv::Ma
                                           const cv::Mat& R1) {
   const cv::Size size = z_rect_mm.size();
   outputs::Reconstruction maps;
-  maps.depth_mm = cv::Mat(size, CV_32F, cv::Scalar(kNaN));
-  maps.points_mm = cv::Mat(size, CV_32FC3, cv::Scalar::all(kNaN));
-  maps.normals = cv::Mat(size, CV_32FC3, cv::Scalar::all(kNaN));
+  maps.depth_mm = cv::Mat(size, CV_32F, cv::Scalar(kNoValue));
+  maps.points_mm = cv::Mat(size, CV_32FC3, cv::Scalar::all(kNoValue));
+  maps.normals = cv::Mat(size, CV_32FC3, cv::Scalar::all(kNoValue));
   maps.confidence = cv::Mat(size, CV_32F, cv::Scalar(0.0f));
   cv::Matx33d cam_from_rect;
   cv::Mat(R1.t()).copyTo(cam_from_rect);

@@ -9,8 +9,8 @@
 namespace rfrecon::depth {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
+constexpr double kDegreesPerRadian = 57.29577951308232;
+}  // namespace
 
 SegmentationStats segment_rows(RectifiedRows& rows, const SegmentationOptions& options) {
   SegmentationStats stats;
@@ -39,7 +39,7 @@ SegmentationStats segment_rows(RectifiedRows& rows, const SegmentationOptions& o
       ++stats.usable;
       // Angle of the surface within the epipolar plane: dz/du * f / z is the tangent of its tilt along the row.
       slope_angle[static_cast<std::size_t>(u)] =
-          static_cast<float>(std::atan(slope * rows.rig.f / z_tri[u]) * 180.0 / kPi);
+          static_cast<float>(std::atan(slope * rows.rig.f / z_tri[u]) * kDegreesPerRadian);
       std::uint8_t code = RF_RUN_START;
       if (previous_usable) {
         const bool jump = std::abs(z_tri[u] - z_tri[u - 1]) > options.jump_relative * z_tri[u];

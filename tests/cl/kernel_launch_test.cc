@@ -10,14 +10,12 @@
 #include "host/cl/device_selection.h"
 #include "host/cl/program_cache.h"
 #include "host/selfcheck/axpy.h"
+#include "tests/common/devices.h"
 
 namespace rfrecon::cl {
 namespace {
 
-DeviceContext first_device() {
-  const auto selected = select_devices(enumerate_devices(), effective_selection(""));
-  return DeviceContext(selected.front());
-}
+using rfrecon::testing::first_device;
 
 TEST(KernelLaunchTest, KernelNameFollowsTheEntry) {
   EXPECT_EQ(kernel_name("axpy", KernelEntry::kNdRange), "axpy_ndrange");

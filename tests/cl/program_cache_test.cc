@@ -13,6 +13,7 @@
 #include "host/cl/kernel_sources.h"
 #include "host/selfcheck/axpy.h"
 #include "kernels/common/params.h"
+#include "tests/common/devices.h"
 #include "tests/common/temp_dir.h"
 
 namespace rfrecon::cl {
@@ -22,10 +23,7 @@ using ::testing::EndsWith;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-DeviceContext first_device() {
-  const auto selected = select_devices(enumerate_devices(), effective_selection(""));
-  return DeviceContext(selected.front());
-}
+using rfrecon::testing::first_device;
 
 TEST(ProgramCacheTest, SameSourceIsBuiltOnce) {
   auto device = first_device();

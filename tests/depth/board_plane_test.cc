@@ -31,7 +31,7 @@ namespace {
 namespace fs = std::filesystem;
 const fs::path kScene = fs::path(RFRECON_FIXTURES_DIR) / "board-plane";
 const fs::path kTrueRig = kScene / "truth" / "rig.yaml";
-const fs::path kEstimatedRig = fs::path(RFRECON_FIXTURES_DIR) / "checkerboard-poses" / "estimated" / "rig.yaml";
+const fs::path kBoardRig = fs::path(RFRECON_FIXTURES_DIR) / "checkerboard-poses" / "estimated" / "rig.yaml";
 const double kBoardDiagonalMm = std::hypot(360.0, 270.0);  // the 10 x 7 squares of 30 mm of the built-in board
 
 struct Plane {
@@ -152,7 +152,7 @@ TEST(BoardPlane, EveryMethodReconstructsTheBoardFlat) {
   std::map<Method, cv::Mat> points;
   cv::Mat common = board.clone();
   for (const auto method : {Method::kTriangulate, Method::kIntegrate, Method::kFused}) {
-    points[method] = reconstruct_points(method, kEstimatedRig);
+    points[method] = reconstruct_points(method, kBoardRig);
     common = with_points(common, points[method]);
   }
   ASSERT_GT(cv::countNonZero(common), 0.5 * cv::countNonZero(board));
@@ -160,12 +160,12 @@ TEST(BoardPlane, EveryMethodReconstructsTheBoardFlat) {
   // every method on the pixels all three reconstruct (measured: fused 0.0051 %, integrate 0.0096 %, triangulate
   // 0.0095 %) and by triangulation over all of its own pixels (0.0095 %, 5 482 more pixels).
   const auto flatness = [&](Method method) {
-    return measure(points[method], common, kEstimatedRig, method_name(method).c_str()).flatness_mm;
+    return measure(points[method], common, kBoardRig, method_name(method).c_str()).flatness_mm;
   };
   EXPECT_LE(flatness(Method::kFused), 2e-4 * kBoardDiagonalMm);
   EXPECT_LE(flatness(Method::kIntegrate), 2e-4 * kBoardDiagonalMm);
   EXPECT_LE(flatness(Method::kTriangulate), 2e-4 * kBoardDiagonalMm);
-  EXPECT_LE(measure(points[Method::kTriangulate], with_points(board, points[Method::kTriangulate]), kEstimatedRig,
+  EXPECT_LE(measure(points[Method::kTriangulate], with_points(board, points[Method::kTriangulate]), kBoardRig,
                     "triangulate, its own pixels")
                 .flatness_mm,
             2e-4 * kBoardDiagonalMm);
@@ -176,8 +176,8 @@ TEST(BoardPlane, EdgePixelsDroppedByTriangulationAreTheBiasedCorrespondences) {
   // rule (RectificationOptions::edge_relative) must drop those pixels and few others. Judged against the rendered
   // correspondences (truth/correspondences.tiff: projector x, y of each pixel centre).
   const auto transport = transport::read_transport(kScene / "T.h5");
-  const auto rig = calib::read_rig(kEstimatedRig);
-  const Rectification rectification = depth_rectification(rig, kEstimatedRig.string());
+  const auto rig = calib::read_rig(kBoardRig);
+  const Rectification rectification = depth_rectification(rig, kBoardRig.string());
   RectificationOptions keep_edges;
   keep_edges.edge_relative = std::numeric_limits<float>::infinity();
   const auto with_rule = triangulate_camera_grid(transport, rig, rectification, RectificationOptions{});
@@ -218,13 +218,13 @@ TEST(BoardPlane, KeepingUnderHalfThePixelsIsAWarningThatSaysWhere) {
   // An epipolar tolerance far below the correspondences' noise (0.025 px RMS here, 0.002 px allowed) rejects most of
   // them: the summary must carry a warning that counts them and names the option.
   const auto transport = transport::read_transport(kScene / "T.h5");
-  const auto rig = calib::read_rig(kEstimatedRig);
+  const auto rig = calib::read_rig(kBoardRig);
   auto devices = cl::open_devices("all");
   cl::ProgramCache programs;
   DepthOptions options;
   options.method = Method::kTriangulate;
   options.rectification.epipolar_tolerance_px = 0.002f;
-  const auto run = reconstruct_depth(transport, rig, kEstimatedRig.string(), options, devices, programs);
+  const auto run = reconstruct_depth(transport, rig, kBoardRig.string(), options, devices, programs);
   ASSERT_LT(2 * run.summary.at("reconstructed_pixels").get<int>(), run.summary.at("correspondences").get<int>());
   ASSERT_TRUE(run.summary.contains("warnings"));
   const std::string warning = run.summary.at("warnings").at(0).get<std::string>();
@@ -238,7 +238,7 @@ TEST(BoardPlane, FusedCornersGiveTheTrueScaleWithTheTrueRig) {
   EXPECT_NEAR(measure_fused(kTrueRig).scale, 1.0, 1e-5);
   // With the rig calibrated from the other poses: measured -4.0e-6; limit 1e-4 (one noise seed; the calibration's
   // scale error varies from one set of poses to the next).
-  EXPECT_NEAR(measure_fused(kEstimatedRig).scale, 1.0, 1e-4);
+  EXPECT_NEAR(measure_fused(kBoardRig).scale, 1.0, 1e-4);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "host/cl/device_selection.h"
 #include "host/transport/compute_transport.h"
 #include "host/transport/spmv_on_devices.h"
+#include "tests/common/devices.h"
 #include "tests/sched/test_support.h"
 #include "tests/transport/synthetic_capture.h"
 #include "tests/transport/test_capture_feed.h"
@@ -18,7 +19,7 @@
 namespace rfrecon::sched {
 namespace {
 
-constexpr const char* kNeedTwoDevices = "needs two OpenCL devices (POCL_DEVICES=\"pthread pthread\")";
+using rfrecon::testing::kNeedTwoDevices;
 
 using transport::KernelEntry;
 namespace testing = transport::testing;

@@ -12,11 +12,12 @@
 
 #include "host/cl/device_selection.h"
 #include "host/sched/scheduler.h"
+#include "tests/common/devices.h"
 
 namespace rfrecon::sched {
 namespace {
 
-constexpr const char* kNeedTwoDevices = "needs two OpenCL devices (POCL_DEVICES=\"pthread pthread\")";
+using rfrecon::testing::kNeedTwoDevices;
 
 class RunTilesTest : public ::testing::Test {
  protected:

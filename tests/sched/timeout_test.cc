@@ -12,6 +12,7 @@
 #include "host/core/errors.h"
 #include "host/sched/block_runner.h"
 #include "host/sched/scheduler.h"
+#include "tests/common/devices.h"
 #include "tests/sched/test_support.h"
 
 namespace rfrecon::sched {
@@ -21,9 +22,9 @@ using rfrecon::testing::hangs_untimed;
 using rfrecon::testing::kHangsUntimed;
 using rfrecon::testing::ScopedEnv;
 
-constexpr const char* kNeedTwoDevices = "needs two OpenCL devices (POCL_DEVICES=\"pthread pthread\")";
-constexpr double kTimeoutS = 0.5;     // far above the healthy calls here (sleeps of milliseconds)
-constexpr std::size_t kItems = 4099;  // prime: the last tile is partial
+using rfrecon::testing::kNeedTwoDevices;
+constexpr double kTimeoutS = 0.5;            // far above the healthy calls here (sleeps of milliseconds)
+constexpr std::size_t kTimeoutItems = 4099;  // prime: the last tile is partial
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -95,10 +96,10 @@ TEST(TileTimeoutEnvironmentTest, SecondsFromTheEnvironmentZeroDisablesAndBadValu
 TEST_F(TileTimeoutTest, HungDeviceIsDroppedAndItsTilesRunElsewhere) {
   if (devices_.size() < 2) GTEST_SKIP() << kNeedTwoDevices;
   options_.faults = FaultPolicy::parse("hang:1:1");
-  std::vector<float> output(kItems, -1.0f);
+  std::vector<float> output(kTimeoutItems, -1.0f);
   const auto start = std::chrono::steady_clock::now();
   const auto report = run_tiles(
-      devices_, kItems, [&](Worker& worker, const Tile& tile) { compute_into(output, worker, tile); }, options_);
+      devices_, kTimeoutItems, [&](Worker& worker, const Tile& tile) { compute_into(output, worker, tile); }, options_);
   EXPECT_LT(seconds_since(start), kTimeoutS + 5.0);  // did not wait for the hung thread
   expect_every_item(output);
   ASSERT_EQ(report.failures.size(), 1u);
@@ -106,21 +107,21 @@ TEST_F(TileTimeoutTest, HungDeviceIsDroppedAndItsTilesRunElsewhere) {
   EXPECT_GT(report.failures[0].tile_end, report.failures[0].tile_begin);  // the tile it held went to device 0
   EXPECT_TRUE(report.devices[1].failed);
   EXPECT_EQ(report.devices[1].items, 0u);
-  EXPECT_EQ(report.devices[0].items, kItems);
+  EXPECT_EQ(report.devices[0].items, kTimeoutItems);
 }
 
 TEST_F(TileTimeoutTest, ResultsDeliveredAfterTheTimeoutAreRefused) {
   if (devices_.size() < 2) GTEST_SKIP() << kNeedTwoDevices;
   // Shared with the late thread, which outlives run_tiles.
   struct Late {
-    std::vector<float> output = std::vector<float>(kItems, -1.0f);
+    std::vector<float> output = std::vector<float>(kTimeoutItems, -1.0f);
     std::atomic<bool> started{false};
     std::atomic<bool> refused{false};
     std::atomic<bool> done{false};
   };
   const auto late = std::make_shared<Late>();
   const auto report = run_tiles(
-      devices_, kItems,
+      devices_, kTimeoutItems,
       [late](Worker& worker, const Tile& tile) {
         if (worker.position() == 1 && !late->started.exchange(true)) {
           std::this_thread::sleep_for(std::chrono::duration<double>(3 * kTimeoutS));  // a driver call that returns late
@@ -150,7 +151,7 @@ TEST_F(TileTimeoutTest, EveryDeviceHangingIsAllDevicesFailed) {
   const auto start = std::chrono::steady_clock::now();
   try {
     run_tiles(
-        devices_, kItems, [](Worker&, const Tile&) {}, options_);
+        devices_, kTimeoutItems, [](Worker&, const Tile&) {}, options_);
     FAIL() << "no error";
   } catch (const AllDevicesFailed& error) {
     const std::string message = error.what();

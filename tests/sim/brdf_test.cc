@@ -9,8 +9,6 @@
 namespace rfrecon::sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 Eigen::Vector3d direction(double theta, double phi) {
   return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
 }
@@ -66,19 +64,19 @@ double albedo(const Brdf& brdf, const Eigen::Vector3d& wo, int n) {
     const double mu = (i + 0.5) / n;
     const double sin_theta = std::sqrt(1.0 - mu * mu);
     for (int j = 0; j < 4 * n; ++j) {
-      const double phi = 2.0 * kPi * (j + 0.5) / (4 * n);
+      const double phi = 2.0 * EIGEN_PI * (j + 0.5) / (4 * n);
       const Eigen::Vector3d wi(sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu);
       sum += evaluate(brdf, wi, wo) * mu;
     }
   }
-  return sum * (1.0 / n) * (2.0 * kPi / (4 * n));
+  return sum * (1.0 / n) * (2.0 * EIGEN_PI / (4 * n));
 }
 
 TEST(BrdfTest, EveryModelIsReciprocal) {
   // f(wi, wo) = f(wo, wi) holds algebraically in every model; only rounding differs between the two argument
   // orders, so 1e-12 relative (a few thousand ulps) is the bound.
   std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> theta(0.0, kPi / 2 * 0.999), phi(0.0, 2 * kPi);
+  std::uniform_real_distribution<double> theta(0.0, EIGEN_PI / 2 * 0.999), phi(0.0, 2 * EIGEN_PI);
   for (const auto& brdf : extreme_brdfs()) {
     for (int k = 0; k < 2000; ++k) {
       const Eigen::Vector3d a = direction(theta(rng), phi(rng)), b = direction(theta(rng), phi(rng));

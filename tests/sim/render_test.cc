@@ -15,12 +15,11 @@
 namespace rfrecon::sim {
 namespace {
 
+using testing::kLambert;
 using testing::make_scene;
 using testing::small_rig;
 using testing::tilted_plane;
 
-constexpr double kPi = 3.14159265358979323846;
-const nlohmann::json kLambert{{"brdf", "lambert"}, {"diffuse", 0.6}};
 const nlohmann::json kWard{{"brdf", "ward"}, {"diffuse", 0.2}, {"specular", 0.5}, {"alpha_x", 0.08}, {"alpha_y", 0.3}};
 
 TEST(RenderTest, PlaneDepthIsExact) {
@@ -64,7 +63,7 @@ TEST(RenderTest, LambertianPlaneMatchesClosedForm) {
       const cv::Vec3f nv = transport.truth.normals.at<cv::Vec3f>(y, x);
       const Eigen::Vector3d X(p[0], p[1], p[2]), n(nv[0], nv[1], nv[2]);
       const double d_p = (o_p - X).norm();
-      const double expected = scene.gain * scene.intensity * 0.6 / kPi * n.dot((o_p - X) / d_p) / (d_p * d_p);
+      const double expected = scene.gain * scene.intensity * 0.6 / EIGEN_PI * n.dot((o_p - X) / d_p) / (d_p * d_p);
       ASSERT_NEAR(row_sums[y * 80 + x], expected, 1e-3 * expected) << "pixel " << x << "," << y;
       ++checked;
     }

@@ -1,5 +1,6 @@
 // The rig file (calib/rig.h): exact round trip, rectification that puts corresponding points on one row, and
 // errors naming the file and key.
+#include <algorithm>
 #include <fstream>
 #include <string>
 #include <utility>
@@ -144,7 +145,11 @@ TEST_F(RigFileTest, HostileSizesAndSyntaxAreInputErrors) {
                      "T: !!opencv-matrix\n   rows: 30000\n   cols: 30000"),
             "at most 16 elements"},
            {"%YAML:1.0\n---\n- 1\n- 2\n", "rig.yaml"},
-           {"%YAML:1.0\n---\nrms: [\n", "rig.yaml"}}) {
+           {"%YAML:1.0\n---\nrms: [\n", "rig.yaml"},
+           // OpenCV 4.6's parser never returns on these two (a second document that does not open with "---").
+           {"%YAML:1.0\n   ow: 0\nc-a- :\np.\n", "line 2: the first key is indented"},
+           {text + "---\n0\n", "line " + std::to_string(std::count(text.begin(), text.end(), '\n') + 1) + ":"},
+           {replaced("rms: ", "rms:\t"), "a tab"}}) {
     std::ofstream(file_, std::ios::trunc) << content;
     try {
       calib::read_rig(file_);
@@ -153,6 +158,42 @@ TEST_F(RigFileTest, HostileSizesAndSyntaxAreInputErrors) {
       EXPECT_NE(std::string(error.what()).find(needle), std::string::npos) << error.what();
     }
   }
+}
+
+// A distortion model that sends the image border to no finite point (found by fuzzing: the rectified size was NaN
+// cast to int) names the key.
+TEST_F(RigFileTest, DistortionWithoutFiniteBorderIsNamed) {
+  calib::StereoRig rig = sim::true_rig(sim::builtin_scene("cube-anisotropic"));
+  rig.projector_dist_coeffs = (cv::Mat_<double>(1, 5) << 0.0, 0.0, 0.0, 2.0, 0.0);
+  calib::write_rig(rig, file_);
+  try {
+    calib::read_rig(file_);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("'projector_dist_coeffs': the distortion model sends"), std::string::npos)
+        << error.what();
+  }
+}
+
+// The layout check refuses only what cv::FileStorage never writes: the same rig with CRLF line ends, comments (one
+// in UTF-8) and blank lines reads back equal (OpenCV itself requires %YAML on the first line).
+TEST_F(RigFileTest, LayoutCheckKeepsWhatOpenCvWritesOrReads) {
+  const calib::StereoRig rig = sim::true_rig(sim::builtin_scene("cube-anisotropic"));
+  calib::write_rig(rig, file_);
+  std::string text;
+  {
+    std::ifstream in(file_);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  std::string edited;
+  for (const char c : text) edited += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  edited.insert(edited.find("---"), "# a comment by J\xc3\xb6rg\r\n\r\n");
+  edited += "\r\n# the end\r\n";
+  std::ofstream(file_, std::ios::trunc | std::ios::binary) << edited;
+  const calib::StereoRig back = calib::read_rig(file_);
+  EXPECT_EQ(max_difference(back.camera_matrix, rig.camera_matrix), 0.0);
+  EXPECT_EQ(max_difference(back.T, rig.T), 0.0);
+  EXPECT_EQ(back.camera_size, rig.camera_size);
 }
 
 }  // namespace

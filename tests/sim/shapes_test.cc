@@ -14,10 +14,9 @@ namespace rfrecon::sim {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::kLambert;
 using testing::make_scene;
 using testing::small_rig;
-
-const nlohmann::json kLambert{{"brdf", "lambert"}, {"diffuse", 0.6}};
 
 nlohmann::json object(const std::string& shape, std::vector<double> size, std::vector<double> position,
                       std::vector<double> rotation_deg) {

@@ -19,11 +19,10 @@ namespace rfrecon::sim {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::kLambert;
 using testing::make_scene;
 using testing::small_rig;
 using testing::tilted_plane;
-
-const nlohmann::json kLambert{{"brdf", "lambert"}, {"diffuse", 0.6}};
 
 class SimulateTest : public ::testing::Test {
  protected:

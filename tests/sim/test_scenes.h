@@ -10,6 +10,9 @@
 
 namespace rfrecon::sim::testing {
 
+// A matte material for the scenes below.
+inline const nlohmann::json kLambert{{"brdf", "lambert"}, {"diffuse", 0.6}};
+
 // `objects` is a vector, not a json: `json x = {one}` is an array under g++ but a copy of `one` under clang.
 inline nlohmann::json small_rig(const std::vector<nlohmann::json>& objects) {
   return {{"name", "test"},
