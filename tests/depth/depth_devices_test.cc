@@ -16,6 +16,7 @@
 #include "sim/frames.h"
 #include "sim/render.h"
 #include "sim/truth_io.h"
+#include "tests/common/devices.h"
 #include "tests/sim/test_scenes.h"
 #include "tests/transport/synthetic_capture.h"
 
@@ -51,7 +52,7 @@ class DepthDevicesTest : public ::testing::Test {
   static void TearDownTestSuite() { scan_.reset(); }
 
   void SetUp() override {
-    if (devices_.size() < 2) GTEST_SKIP() << "needs two OpenCL devices (POCL_DEVICES=\"pthread pthread\")";
+    if (devices_.size() < 2) GTEST_SKIP() << rfrecon::testing::kNeedTwoDevices;
     devices_.erase(devices_.begin() + 2, devices_.end());
   }
 

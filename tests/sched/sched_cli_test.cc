@@ -12,6 +12,7 @@
 #include "host/cli/exit_codes.h"
 #include "host/sched/fault.h"
 #include "host/sched/watchdog.h"
+#include "tests/common/devices.h"
 #include "tests/common/run_cli.h"
 #include "tests/sched/test_support.h"
 #include "tests/transport/synthetic_capture.h"
@@ -113,7 +114,7 @@ TEST_F(SchedCliTest, EntryListOfAnotherLengthThanTheDevicesIsExitCode2BeforeAnyW
 }
 
 TEST_F(SchedCliTest, TransportCompletesWhenADeviceFailsAndReportsIt) {
-  if (devices_ < 2) GTEST_SKIP() << "needs two OpenCL devices (POCL_DEVICES=\"pthread pthread\")";
+  if (devices_ < 2) GTEST_SKIP() << rfrecon::testing::kNeedTwoDevices;
   ::setenv(kInjectFaultEnv, "0:3", 1);
   const auto result = run_cli(transport_args());
   ASSERT_EQ(result.exit_code, cli::kExitOk) << result.output;
@@ -134,7 +135,7 @@ TEST_F(SchedCliTest, EveryDeviceFailingExitsWithTheOpenClCodeAndWritesNothing) {
 }
 
 TEST_F(SchedCliTest, TransportCompletesWhenADeviceHangsAndExits) {
-  if (devices_ < 2) GTEST_SKIP() << "needs two OpenCL devices (POCL_DEVICES=\"pthread pthread\")";
+  if (devices_ < 2) GTEST_SKIP() << rfrecon::testing::kNeedTwoDevices;
   warm_kernel_cache();
   ::setenv(kInjectFaultEnv, "hang:1:3", 1);
   ::setenv(kTileTimeoutEnv, kShortTimeout, 1);

@@ -8,6 +8,7 @@
 #include "host/capture/protocol.h"
 #include "host/cl/device_selection.h"
 #include "host/transport/compute_transport.h"
+#include "tests/common/devices.h"
 #include "tests/transport/same_transport.h"
 #include "tests/transport/synthetic_capture.h"
 
@@ -18,7 +19,7 @@ using testing::expect_same_transport;  // the tolerance of transport_kernel_test
 
 TEST(TransportDevicesTest, SingleWorkItemDeviceAndNdRangeDeviceGiveTheOneDeviceTransport) {
   auto devices = cl::open_devices("all");
-  if (devices.size() < 2) GTEST_SKIP() << "needs two OpenCL devices (POCL_DEVICES=\"pthread pthread\")";
+  if (devices.size() < 2) GTEST_SKIP() << rfrecon::testing::kNeedTwoDevices;
   devices.erase(devices.begin() + 2, devices.end());
   testing::SceneOptions options;
   options.camera_size = {48, 40};
