@@ -1,4 +1,4 @@
-# The kernels' compile-time parameters (K, row interleave, maximum row width, dot spacings) as cache options, and
+# The kernels' compile-time parameters (K, row interleave, maximum row width, frame batch, dot spacings) as cache options, and
 # rfrecon_configure_kernel_params(OUT_DIR), which writes OUT_DIR/kernels/common/params.h from
 # kernels/common/params.h.in. The host build (cmake/EmbedKernels.cmake) and the hw/ flows both call it, so a board
 # binary and the host that loads it agree on the values unless they were configured differently, which the binary's
@@ -6,6 +6,7 @@
 set(RFRECON_K 8 CACHE STRING "K, entries per camera pixel: the kernels' and the host's default, fixed in FPGA binaries")
 set(RFRECON_ROW_INTERLEAVE 8 CACHE STRING "Rows the single work-item depth kernels advance together")
 set(RFRECON_MAX_ROW_WIDTH 4096 CACHE STRING "Widest row (pixels) a kernel keeps on chip")
+set(RFRECON_FRAME_BATCH 16 CACHE STRING "Dot-grid frames per compression launch (each pixel's ELL row on chip across them)")
 set(rfrecon_default_dot_spacings "")
 foreach(s RANGE 2 64)
   list(APPEND rfrecon_default_dot_spacings ${s})
@@ -26,6 +27,7 @@ function(rfrecon_configure_kernel_params out_dir)
   rfrecon_check_kernel_param(RFRECON_K 1 64)
   rfrecon_check_kernel_param(RFRECON_ROW_INTERLEAVE 1 1024)
   rfrecon_check_kernel_param(RFRECON_MAX_ROW_WIDTH 1 16384)
+  rfrecon_check_kernel_param(RFRECON_FRAME_BATCH 1 64)
   if(RFRECON_DOT_SPACINGS STREQUAL "")
     message(FATAL_ERROR "RFRECON_DOT_SPACINGS is empty: name at least one dot spacing")
   endif()

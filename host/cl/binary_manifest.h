@@ -34,7 +34,7 @@ class BinaryManifestError : public ClError {
 std::string target_macro(const DeviceInfo& info);
 
 // The parameters header's values (kernels/common/params.h) as a manifest records them: {"RF_K": 8,
-// "RF_ROW_INTERLEAVE": 8, "RF_MAX_ROW_WIDTH": 4096, "RF_DOT_SPACINGS": [2, ..., 64]}.
+// "RF_ROW_INTERLEAVE": 8, "RF_MAX_ROW_WIDTH": 4096, "RF_FRAME_BATCH": 16, "RF_DOT_SPACINGS": [2, ..., 64]}.
 nlohmann::json host_kernel_parameters();
 
 // What a manifest must say for the host to load its binary on a device.
@@ -42,7 +42,8 @@ struct ManifestExpectation {
   nlohmann::json parameters;         // host_kernel_parameters()
   std::string source_sha256;         // embedded_kernel_sources_sha256()
   std::vector<std::string> kernels;  // kernels the binary must hold: the embedded single work-item entries
-  std::string target_macro;          // target_macro(device)
+  // target_macro(device), or on AMD/Xilinx boards also RF_TARGET_HLS (an xclbin of the HLS C++ tops of hw/hls/)
+  std::vector<std::string> target_macros;
 };
 ManifestExpectation host_manifest_expectation(const DeviceInfo& info);
 
@@ -54,7 +55,8 @@ struct BinaryManifest {
 };
 
 // binary's manifest (binary + ".json"), read and checked against `expected`: valid JSON, every field of the format
-// with its type, `binary` naming binary's file, `stand_in` false, then `target_macro`, `parameters`, `source_sha256`
+// with its type, `binary` naming binary's file, `stand_in` false, then `target_macro` (one of the expected),
+// `parameters`, `source_sha256`
 // and `kernels` (a superset of the expected). Throws BinaryManifestError at the first mismatch. Needs no device.
 BinaryManifest check_binary_manifest(const std::filesystem::path& binary, const ManifestExpectation& expected);
 

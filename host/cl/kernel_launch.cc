@@ -45,8 +45,10 @@ namespace detail {
 }
 
 void write_bytes(::cl::CommandQueue& queue, const ::cl::Buffer& buffer, const void* data, std::size_t bytes,
-                 bool blocking) {
-  if (bytes > 0) RF_CL_CHECK(queue.enqueueWriteBuffer(buffer, blocking ? CL_TRUE : CL_FALSE, 0, bytes, data));
+                 bool blocking, std::size_t offset_bytes) {
+  if (bytes > 0) {
+    RF_CL_CHECK(queue.enqueueWriteBuffer(buffer, blocking ? CL_TRUE : CL_FALSE, offset_bytes, bytes, data));
+  }
 }
 
 void read_bytes(::cl::CommandQueue& queue, const ::cl::Buffer& buffer, void* data, std::size_t bytes) {

@@ -43,7 +43,7 @@ namespace detail {
 ::cl::Buffer create_buffer(const ::cl::Context& context, cl_mem_flags flags, std::size_t bytes, const void* host,
                            std::size_t min_bytes, const void* fill);
 void write_bytes(::cl::CommandQueue& queue, const ::cl::Buffer& buffer, const void* data, std::size_t bytes,
-                 bool blocking);
+                 bool blocking, std::size_t offset_bytes);
 void read_bytes(::cl::CommandQueue& queue, const ::cl::Buffer& buffer, void* data, std::size_t bytes);
 }  // namespace detail
 
@@ -66,12 +66,12 @@ template <typename T>
   return upload(context, host.data(), host.size(), flags);
 }
 
-// Writes data[0, count) to the start of buffer; nothing for count 0. A non-blocking write reads data later: keep
-// it alive until the queue has run the write.
+// Writes data[0, count) to buffer from element `offset` on; nothing for count 0. A non-blocking write reads data
+// later: keep it alive until the queue has run the write.
 template <typename T>
 void write_buffer(::cl::CommandQueue& queue, const ::cl::Buffer& buffer, const T* data, std::size_t count,
-                  bool blocking = true) {
-  detail::write_bytes(queue, buffer, data, count * sizeof(T), blocking);
+                  bool blocking = true, std::size_t offset = 0) {
+  detail::write_bytes(queue, buffer, data, count * sizeof(T), blocking, offset * sizeof(T));
 }
 
 // Blocking reads of the first `count` elements of buffer: into data, or into a new vector.

@@ -1,11 +1,16 @@
 // Program building, binary round-trips and the per-device program cache.
 #include "host/cl/program_cache.h"
 
+#include <chrono>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
+#include <future>
 #include <iterator>
 #include <stdexcept>
+
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
 
 #include "host/cl/error.h"
 #include "host/cl/kernel_sources.h"
@@ -21,6 +26,10 @@ std::uint64_t fnv1a(std::string_view text, std::uint64_t hash = 1469598103934665
     hash *= 1099511628211ULL;
   }
   return hash;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void build_or_throw(::cl::Program& program, DeviceContext& device, std::string_view name, std::string_view options) {
@@ -55,7 +64,8 @@ void save_program_binary(const ::cl::Program& program, const std::filesystem::pa
   write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
-ProgramCache::ProgramCache(std::filesystem::path binary) : binary_location_(std::move(binary)) {
+ProgramCache::ProgramCache(std::filesystem::path binary, ProgramStore store)
+    : binary_location_(std::move(binary)), store_(std::move(store)) {
   for (const char* variable : {kBinaryEnv, kBinaryDirEnv}) {
     const char* env = std::getenv(variable);
     if (binary_location_.empty() && env != nullptr && *env != '\0') binary_location_ = env;
@@ -92,6 +102,10 @@ const ProgramCache::BoardProgram& ProgramCache::board_program(DeviceContext& dev
 ::cl::Program ProgramCache::build_source(DeviceContext& device, std::string_view name, std::string_view source,
                                          std::string_view options) {
   const std::string full = device_preamble(device.info()) + std::string(source);
+  // The store's key names the device and its driver besides the source and options: a binary is for one of each.
+  const DeviceInfo& info = device.info();
+  const std::uint64_t store_key =
+      fnv1a(options, fnv1a(full, fnv1a(info.platform_name + '\n' + info.device_name + '\n' + info.driver_version)));
   return cached_or_built(
       device, fnv1a(full), name,
       [&] {
@@ -100,7 +114,23 @@ const ProgramCache::BoardProgram& ProgramCache::board_program(DeviceContext& dev
         RF_CL_CHECK_CODE(status, "clCreateProgramWithSource");
         return program;
       },
-      options);
+      options, store_key);
+}
+
+::cl::Program ProgramCache::load_stored(DeviceContext& device, std::uint64_t key, std::string_view options) {
+  const auto bytes = store_.load(key);
+  if (!bytes) return {};
+  cl_int status = CL_SUCCESS;
+  std::vector<cl_int> binary_status(1, CL_SUCCESS);
+  ::cl::Program program(device.context(), {device.device()}, ::cl::Program::Binaries{*bytes}, &binary_status, &status);
+  const std::string opts(options);
+  if (status == CL_SUCCESS && binary_status.front() == CL_SUCCESS &&
+      program.build(std::vector<::cl::Device>{device.device()}, opts.c_str()) == CL_SUCCESS) {
+    return program;
+  }
+  spdlog::debug("program cache: the stored binary {:016x} does not load on {}; building from source", key,
+                describe(device.info()));
+  return {};
 }
 
 ::cl::Program ProgramCache::build_binary(DeviceContext& device, const std::filesystem::path& path,
@@ -124,25 +154,71 @@ const ProgramCache::BoardProgram& ProgramCache::board_program(DeviceContext& dev
         }
         return program;
       },
-      options);
+      options, 0);
 }
 
 ::cl::Program ProgramCache::cached_or_built(DeviceContext& device, std::uint64_t hash, std::string_view name,
-                                            const std::function<::cl::Program()>& create, std::string_view options) {
+                                            const std::function<::cl::Program()>& create, std::string_view options,
+                                            std::uint64_t store_key) {
   const Key key{device.context()(), fnv1a(options, hash)};
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     if (const auto it = programs_.find(key); it != programs_.end()) return it->second;
   }
-  ::cl::Program program = create();
-  build_or_throw(program, device, name, options);
+  const auto start = std::chrono::steady_clock::now();
+  ::cl::Program program = store_key != 0 ? load_stored(device, store_key, options) : ::cl::Program();
+  const bool loaded = program() != nullptr;
+  if (!loaded) {
+    program = create();
+    build_or_throw(program, device, name, options);
+    if (store_key != 0) store_.save(store_key, program_binary(program));
+  }
+  const double seconds = seconds_since(start);
   const std::lock_guard<std::mutex> lock(mutex_);
+  if (store_key != 0) {
+    (loaded ? builds_.loaded : builds_.built) += 1;
+    (loaded ? builds_.load_seconds : builds_.build_seconds) += seconds;
+  }
   return programs_.emplace(key, std::move(program)).first->second;
+}
+
+void to_json(nlohmann::json& json, const ProgramBuilds& builds) {
+  json = {{"compiled", builds.built},
+          {"loaded", builds.loaded},
+          {"compile_seconds", builds.build_seconds},
+          {"load_seconds", builds.load_seconds}};
+}
+
+std::string describe(const ProgramBuilds& builds, const ProgramStore& store) {
+  return std::to_string(builds.built) + " compiled, " + std::to_string(builds.loaded) +
+         " loaded from the program cache" +
+         (store.enabled() ? " " + store.directory().string() : std::string(" (off)"));
+}
+
+ProgramBuilds ProgramCache::builds() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return builds_;
 }
 
 std::size_t ProgramCache::size() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   return programs_.size();
+}
+
+void prepare_programs(std::vector<DeviceContext>& devices, ProgramCache& programs,
+                      const std::vector<ProgramRequest>& requests) {
+  std::vector<std::future<void>> builds;
+  builds.reserve(devices.size());
+  for (DeviceContext& device : devices) {
+    builds.push_back(std::async(std::launch::async, [&] {
+      try {
+        for (const ProgramRequest& request : requests) (void)programs.get(device, request.kernel_path, request.options);
+      } catch (const std::exception& error) {
+        spdlog::debug("preparing programs on {}: {}", describe(device.info()), error.what());
+      }
+    }));
+  }
+  for (auto& build : builds) build.get();
 }
 
 }  // namespace rfrecon::cl

@@ -1,4 +1,4 @@
-// `rfrecon devices`: lists the OpenCL devices and how rfrecon would load programs on each.
+// `rfrecon devices`: lists the OpenCL devices and how rfrecon would load programs on each; clears the program cache.
 #include <cstdint>
 #include <iostream>
 
@@ -16,6 +16,7 @@ constexpr std::uint64_t kMiB = std::uint64_t{1} << 20;
 
 struct DevicesOptions {
   bool json = false;
+  bool clear_cache = false;
   std::string selection;
 };
 
@@ -26,6 +27,13 @@ std::string program_origin(const cl::ProgramCache& programs, const cl::DeviceInf
 }
 
 void run_devices(const DevicesOptions& options) {
+  if (options.clear_cache) {
+    const cl::ProgramStore store;
+    const std::size_t removed = store.clear();
+    std::cout << "program cache: " << (store.enabled() ? store.directory().string() : std::string("off")) << ", "
+              << removed << " stored program" << (removed == 1 ? "" : "s") << " removed\n";
+    return;
+  }
   const auto available = cl::enumerate_devices();
   // Without --devices every device is listed; with it, only the selection (and a bad selection is an error).
   const auto shown = cl::select_devices(available, options.selection.empty() ? "all" : options.selection);
@@ -62,6 +70,8 @@ void add_devices_command(CLI::App& app) {
   auto options = std::make_shared<DevicesOptions>();
   auto* command = app.add_subcommand("devices", "List OpenCL platforms and devices");
   command->add_flag("--json", options->json, "Print JSON instead of text");
+  command->add_flag("--clear-cache", options->clear_cache,
+                    "Remove the stored program binaries ($RFRECON_PROGRAM_CACHE, else ~/.cache/rfrecon/programs)");
   add_devices_option(command, options->selection);
   command->callback([options] { run_devices(*options); });
 }

@@ -29,7 +29,8 @@ void run_reconstruct(ReconstructOptions options) {
     std::printf("  %-24s %8.3f s\n", timing["stage"].get<std::string>().c_str(), timing["seconds"].get<double>());
     total += timing["seconds"].get<double>();
   }
-  std::printf("  %-24s %8.3f s\n", "total", total);
+  std::printf("  %-24s %8.3f s\nprograms: %s\n", "total", total,
+              cl::describe(programs.builds(), programs.store()).c_str());
 }
 }  // namespace
 

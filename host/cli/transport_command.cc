@@ -35,7 +35,8 @@ void run_transport(TransportOptions options) {
   for (const auto& timing : file_run.run.timings) {
     std::printf("  %-12s %8.3f s\n", timing.stage.c_str(), timing.seconds);
   }
-  std::printf("  %-12s %8.3f s\n", "total", file_run.total_seconds);
+  std::printf("  %-12s %8.3f s\nprograms: %s\n", "total", file_run.total_seconds,
+              cl::describe(programs.builds(), programs.store()).c_str());
   sched::log_reports(file_run.run.schedule);
 }
 }  // namespace

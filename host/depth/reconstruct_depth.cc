@@ -96,6 +96,13 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
 
   cv::Mat z_rect_grid = triangulation.z_rect_mm;
   if (options.method != Method::kTriangulate) {
+    std::vector<cl::ProgramRequest> requests = {
+        {"transport/spmv.cl", transport::transport_build_options(transport.k())},
+        {"transport/spmv.cl", ""},
+        {"depth/integrate.cl", ""}};
+    if (options.method == Method::kFused) requests.push_back({"depth/fuse.cl", ""});
+    cl::prepare_programs(devices, programs, requests);
+    clock.lap("build programs");
     std::vector<sched::RunReport> reports;
     auto primal = transport::primal_on_devices(devices, programs, options.entries, transport,
                                                std::vector<float>(transport.projector_pixels(), 1.0f));
@@ -157,6 +164,7 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
   fill_confidence(run.maps, z_rect_grid, triangulation, rectified, options);
   clock.lap("camera grid");
   summary["timings"] = clock.timings();
+  summary["programs"] = programs.builds();
   const int reconstructed = cv::countNonZero(run.maps.depth_mm == run.maps.depth_mm);
   summary["reconstructed_pixels"] = reconstructed;
   summary["devices"] = nlohmann::json::array();

@@ -2,6 +2,7 @@
 // kernels/depth/row_integration.h and row_fusion.h.
 #include "host/depth/row_solvers.h"
 
+#include <algorithm>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -82,6 +83,8 @@ struct RowBuffers {
   }
 };
 
+constexpr std::size_t kRowsPerWorkGroup = 8;  // NDRange entries: one row per work-item
+
 // Sets the kernel's arguments: those both kernels share (geometry, tile, sizes), then `rest`, and runs it over the
 // rows, one work-item per row (kNdRange) or one in all.
 template <typename... Rest>
@@ -90,7 +93,10 @@ void run_rows(cl::DeviceContext& device, ::cl::Kernel& kernel, KernelEntry entry
   const RfRectifiedRig& rig = rows.rig;
   cl::set_args(kernel, rig.f, rig.cx_cam, rig.cx_proj, rig.cy, rig.b, cl_int{row_begin}, cl_int{row_end - row_begin},
                cl_int{rows.width}, cl_int{rows.proj_width}, cl_int{count}, rest...);
-  cl::enqueue_kernel(device.queue(), kernel, entry, static_cast<std::size_t>(row_end - row_begin));
+  // A fixed work-group size: with the runtime's choice, which follows the tile's row count, PoCL compiles the
+  // kernel again for every new size, on the first run of each (docs/performance.md#program-cache).
+  const std::size_t group = std::min<std::size_t>(kRowsPerWorkGroup, device.info().max_work_group_size);
+  cl::enqueue_kernel(device.queue(), kernel, entry, static_cast<std::size_t>(row_end - row_begin), {group});
 }
 
 }  // namespace

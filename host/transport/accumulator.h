@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include <opencv2/core.hpp>
 
@@ -32,12 +33,22 @@ class TransportAccumulator {
 // The bit mask of Gray bit `bit` (0 = most significant) in an axis code word.
 std::uint32_t gray_bit_mask(const TransportSetup& setup, GrayAxis axis, int bit);
 
+// A dot frame's offsets lie in [0, s), as host/capture/protocol.h makes them; std::invalid_argument otherwise.
+void check_dot_offsets(const TransportSetup& setup, int offset_x, int offset_y);
+
+// The kernels support the dot spacings of RF_DOT_SPACINGS (kernels/common/params.h, fixed in a board binary); any
+// other spacing but 0 (Gray code only) is a ProcessingError naming it and the supported ones.
+void check_kernel_dot_spacing(int dot_spacing);
+
 // An automatic noise threshold (setup.thresholds.noise <= 0) is resolved for an 8-bit camera here; compute_transport
 // resolves it for the capture's bit depth before it makes an accumulator.
 std::unique_ptr<TransportAccumulator> make_reference_accumulator(TransportSetup setup);
 
-// Kernels of kernels/transport/decode.cl and compress.cl; the ELL state stays on the device until finish().
+// Kernels of kernels/transport/decode.cl and compress.cl; the ELL state stays on the device until finish(). Dot
+// frames are compressed RF_FRAME_BATCH at a time (the last batch at finish()). build_options are added to the
+// programs' (tests build the single work-item entries with an FPGA target macro on PoCL).
 std::unique_ptr<TransportAccumulator> make_device_accumulator(TransportSetup setup, cl::DeviceContext& device,
-                                                              cl::ProgramCache& programs, KernelEntry entry);
+                                                              cl::ProgramCache& programs, KernelEntry entry,
+                                                              const std::string& build_options = {});
 
 }  // namespace rfrecon::transport

@@ -187,8 +187,7 @@ class TransportBlocks final : public sched::BlockTask {
 
   void prepare(sched::Worker& worker) override {
     programs_.get(worker.device(), "transport/decode.cl");
-    programs_.get(worker.device(), "transport/compress.cl",
-                  "-DRF_K=" + std::to_string(capture_.setup.entries_per_pixel));
+    programs_.get(worker.device(), "transport/compress.cl", transport_build_options(capture_.setup.entries_per_pixel));
   }
 
   void create(sched::Worker& worker, std::size_t block) override {
@@ -284,6 +283,11 @@ TransportRun compute_transport_on_devices(const fs::path& capture_dir, capture::
                                           cl::ProgramCache& programs, const cl::EntryChoice& entries) {
   entries.check_device_count(devices.size());
   StageClock clock;
+  clock.time("build programs", [&] {
+    cl::prepare_programs(
+        devices, programs,
+        {{"transport/decode.cl", ""}, {"transport/compress.cl", transport_build_options(setup.entries_per_pixel)}});
+  });
   Progress progress("transport", manifest.frames.size(), "frames");
   const auto load = [&](const capture::CaptureManifest& with_size, std::size_t i) {
     return capture::load_frame(capture_dir, with_size, i);

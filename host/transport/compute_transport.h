@@ -24,8 +24,8 @@ capture::CaptureManifest open_capture(const std::filesystem::path& capture_dir, 
 
 struct TransportRun {
   CompressedTransport transport;
-  // "read frames", "setup" (buffers, kernel builds; within "decode" on devices), "decode", "compress", "finalize",
-  // "subpixel" (Gray-code-only captures: host/transport/gray_subpixel.h)
+  // "read frames", "setup" (buffers, kernel builds; on devices "build programs" first, buffers within "decode"),
+  // "decode", "compress", "finalize", "subpixel" (Gray-code-only captures: host/transport/gray_subpixel.h)
   std::vector<StageTiming> timings;
   std::vector<sched::RunReport> schedule;  // per stage and device (compute_transport_on_devices only)
 };

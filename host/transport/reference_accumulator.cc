@@ -1,9 +1,14 @@
-// Plain C++ reference of the transport kernels (decode.cl, compress.cl), written as simple loops.
+// Plain C++ reference of the transport kernels (decode.cl, compress.cl), written as simple loops; the checks of
+// dot frames both implementations share.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "host/capture/protocol.h"
+#include "host/core/errors.h"
 #include "host/transport/accumulator.h"
 
 namespace rfrecon::transport {
@@ -13,6 +18,24 @@ std::uint32_t gray_bit_mask(const TransportSetup& setup, GrayAxis axis, int bit)
   const int bits = capture::gray_bits(n);
   if (bit < 0 || bit >= bits) throw std::invalid_argument("Gray code bit out of range");
   return 1u << (bits - 1 - bit);
+}
+
+void check_dot_offsets(const TransportSetup& setup, int offset_x, int offset_y) {
+  const int s = setup.dot_spacing;
+  if (s <= 0 || offset_x < 0 || offset_x >= s || offset_y < 0 || offset_y >= s) {
+    throw std::invalid_argument("transport: dot offsets (" + std::to_string(offset_x) + ", " +
+                                std::to_string(offset_y) + ") outside [0, " + std::to_string(s) + ")");
+  }
+}
+
+void check_kernel_dot_spacing(int dot_spacing) {
+  const std::vector<int> supported RF_DOT_SPACINGS;
+  if (dot_spacing == 0 || std::find(supported.begin(), supported.end(), dot_spacing) != supported.end()) return;
+  std::string list;
+  for (const int s : supported) list += (list.empty() ? "" : ", ") + std::to_string(s);
+  throw ProcessingError("transport: the capture's dot spacing " + std::to_string(dot_spacing) +
+                        " is not one the kernels were built for (RF_DOT_SPACINGS = {" + list +
+                        "}; configure with -DRFRECON_DOT_SPACINGS, docs/fpga.md)");
 }
 
 namespace {
@@ -69,6 +92,7 @@ class ReferenceAccumulator final : public TransportAccumulator {
   }
 
   void add_dot_frame(int offset_x, int offset_y, const cv::Mat& frame) override {
+    check_dot_offsets(t_.setup, offset_x, offset_y);
     const float* f = pixels(frame, t_.setup);
     const float* b = black_.ptr<float>();
     const int s = t_.setup.dot_spacing;

@@ -2,6 +2,7 @@
 #include "host/transport/spmv.h"
 
 #include <stdexcept>
+#include <string>
 
 #include "host/cl/kernel_launch.h"
 
@@ -16,11 +17,12 @@ void check_light(std::size_t got, std::size_t expected, const char* what) {
   }
 }
 
+// options: the build options of spmv.cl (the primal's K).
 template <typename... Args>
 std::vector<float> run_spmv(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry, const char* name,
-                            std::size_t n, const Args&... args) {
+                            const std::string& options, std::size_t n, const Args&... args) {
   if (n == 0) return {};
-  ::cl::Kernel kernel = cl::make_kernel(programs.get(device, "transport/spmv.cl"), name, entry);
+  ::cl::Kernel kernel = cl::make_kernel(programs.get(device, "transport/spmv.cl", options), name, entry);
   const ::cl::Buffer output = cl::make_buffer<float>(device.context(), n, CL_MEM_WRITE_ONLY);
   cl::set_args(kernel, args..., output, static_cast<cl_uint>(n));
   cl::enqueue_kernel(device.queue(), kernel, entry, n);
@@ -77,18 +79,20 @@ std::vector<float> dual_reference(const CompressedTransport& transport, const st
 }
 
 std::vector<float> primal_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
-                                 const CompressedTransport& transport, const std::vector<float>& light_p) {
+                                 const CompressedTransport& transport, const std::vector<float>& light_p,
+                                 const std::string& build_options) {
   check_light(light_p.size(), transport.projector_pixels(), "primal");
-  return run_spmv(device, programs, entry, "primal", transport.camera_pixels(), static_cast<cl_uint>(transport.k()),
-                  cl::upload(device.context(), transport.indices), cl::upload(device.context(), transport.weights),
-                  cl::upload(device.context(), light_p));
+  return run_spmv(device, programs, entry, "primal", transport_build_options(transport.k(), build_options),
+                  transport.camera_pixels(), cl::upload(device.context(), transport.indices),
+                  cl::upload(device.context(), transport.weights), cl::upload(device.context(), light_p));
 }
 
 std::vector<float> dual_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
-                               const TransposedTransport& transposed, const std::vector<float>& light_c) {
+                               const TransposedTransport& transposed, const std::vector<float>& light_c,
+                               const std::string& build_options) {
   const std::size_t n = static_cast<std::size_t>(transposed.projector_size.area());
   if (transposed.row_start.size() != n + 1) throw std::invalid_argument("dual: malformed transposed transport");
-  return run_spmv(device, programs, entry, "dual", n, cl::upload(device.context(), transposed.row_start),
+  return run_spmv(device, programs, entry, "dual", build_options, n, cl::upload(device.context(), transposed.row_start),
                   cl::upload(device.context(), transposed.camera_pixel),
                   cl::upload(device.context(), transposed.weights), cl::upload(device.context(), light_c));
 }

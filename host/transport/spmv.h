@@ -1,6 +1,7 @@
 // Products with the compressed T: primal images T L_p (camera side) and dual images T^T L_c (projector side).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "host/cl/device_context.h"
@@ -27,9 +28,12 @@ std::vector<float> primal_reference(const CompressedTransport& transport, const 
 std::vector<float> dual_reference(const CompressedTransport& transport, const std::vector<float>& light_c);
 
 // kernels/transport/spmv.cl on one device.
+// build_options are added to spmv.cl's (tests build the single work-item entries with an FPGA target macro).
 std::vector<float> primal_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
-                                 const CompressedTransport& transport, const std::vector<float>& light_p);
+                                 const CompressedTransport& transport, const std::vector<float>& light_p,
+                                 const std::string& build_options = {});
 std::vector<float> dual_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
-                               const TransposedTransport& transposed, const std::vector<float>& light_c);
+                               const TransposedTransport& transposed, const std::vector<float>& light_c,
+                               const std::string& build_options = {});
 
 }  // namespace rfrecon::transport

@@ -34,8 +34,8 @@ struct DeviceState {
 };
 
 void prepare(sched::Worker& worker, DeviceState& state, cl::ProgramCache& programs, const char* name,
-             const std::vector<float>& light) {
-  state.kernel = cl::make_kernel(programs.get(worker.device(), "transport/spmv.cl"), name, worker.entry());
+             const std::string& options, const std::vector<float>& light) {
+  state.kernel = cl::make_kernel(programs.get(worker.device(), "transport/spmv.cl", options), name, worker.entry());
   state.light = cl::upload(worker.device().context(), light);
 }
 
@@ -80,7 +80,7 @@ ProductRun primal_on_devices(std::vector<cl::DeviceContext>& devices, cl::Progra
   std::vector<DeviceState> states(devices.size());
   sched::TileWork work;
   work.prepare = [&](sched::Worker& worker) {
-    prepare(worker, states[worker.position()], programs, "primal", light_p);
+    prepare(worker, states[worker.position()], programs, "primal", transport_build_options(transport.k()), light_p);
   };
   work.upload = [&](sched::Worker& worker, const sched::Tile& tile, int slot) {
     auto& state = states[worker.position()];
@@ -89,8 +89,7 @@ ProductRun primal_on_devices(std::vector<cl::DeviceContext>& devices, cl::Progra
   };
   work.compute = [&](sched::Worker& worker, const sched::Tile& tile, int slot) {
     auto& state = states[worker.position()];
-    run_tile(worker, state, tile, slot, image, static_cast<cl_uint>(k), state.rows[slot].buffer(),
-             state.weights[slot].buffer());
+    run_tile(worker, state, tile, slot, image, state.rows[slot].buffer(), state.weights[slot].buffer());
   };
   return run_product(devices, transport.camera_pixels(), entries, options, "primal", work, image);
 }
@@ -103,7 +102,9 @@ ProductRun dual_on_devices(std::vector<cl::DeviceContext>& devices, cl::ProgramC
   std::vector<float> image(pixels, 0.0f);
   std::vector<DeviceState> states(devices.size());
   sched::TileWork work;
-  work.prepare = [&](sched::Worker& worker) { prepare(worker, states[worker.position()], programs, "dual", light_c); };
+  work.prepare = [&](sched::Worker& worker) {
+    prepare(worker, states[worker.position()], programs, "dual", {}, light_c);
+  };
   work.upload = [&](sched::Worker& worker, const sched::Tile& tile, int slot) {
     auto& state = states[worker.position()];
     const std::int32_t first = transposed.row_start[tile.begin];

@@ -1,4 +1,4 @@
-// Construction of an empty compressed transport.
+// Construction of an empty compressed transport; the kernels' K build option.
 #include "host/transport/transport_types.h"
 
 #include <limits>
@@ -18,6 +18,12 @@ CompressedTransport make_empty_transport(const TransportSetup& setup) {
   transport.flags.assign(n, 0);
   transport.direct_energy.assign(n, 0.0f);
   return transport;
+}
+
+std::string transport_build_options(int entries_per_pixel, const std::string& extra) {
+  if (entries_per_pixel == RF_K) return extra;
+  const std::string k = "-DRF_K=" + std::to_string(entries_per_pixel);
+  return extra.empty() ? k : k + " " + extra;
 }
 
 }  // namespace rfrecon::transport

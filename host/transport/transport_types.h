@@ -57,6 +57,11 @@ struct TransportSetup {
   Thresholds thresholds;
 };
 
+// The build options of the transport kernels for K entries per pixel, then `extra`: "-DRF_K=16" for another K than
+// the parameters header's, nothing for RF_K itself, so that every stage shares one program per kernel file then (and
+// a board binary needs no option).
+std::string transport_build_options(int entries_per_pixel, const std::string& extra = {});
+
 // Compressed T: row c = camera pixel y * W + x, column q = projector pixel y * Wp + x. Entry k of row c is at
 // c * K + k, strongest first; index -1 (weight 0) marks an empty slot. Weights are T's values: linear camera
 // response to the projector pixel at full level, black frame subtracted.

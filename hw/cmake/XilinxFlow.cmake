@@ -1,6 +1,8 @@
-# AMD Vitis flow for the OpenCL C kernels (v++, Vitis 2019.2 to 2022.2; 2023.1 and later compile only C++ and RTL
-# kernels). Each single work-item entry is compiled on its own (v++ -c -k), then all are linked into one .xclbin with
-# the board's link configuration (compute units and memory banks).
+# AMD Vitis flow (v++): Vitis 2019.2 to 2022.2 compile the OpenCL C kernels; 2023.1 and later compile only C++ (HLS)
+# and RTL kernels, so from 2023.1 the flow compiles the HLS C++ tops of hw/hls/ instead, which carry the single
+# work-item entries' names, arguments and bodies (the same xclbin for the host either way). Each single work-item
+# entry is compiled on its own (v++ -c -k), then all are linked into one .xclbin with the board's link configuration
+# (compute units and memory banks).
 #   rfrecon_fpga_sw_emu  -> rfrecon_<board>_sw_emu.xclbin and emconfig.json   (minutes)
 #   rfrecon_fpga_hw_emu  -> rfrecon_<board>_hw_emu.xclbin and emconfig.json   (tens of minutes)
 #   rfrecon_fpga_report  the hardware .xo files only: HLS synthesis and its reports under _x.hw/ (tens of minutes)
@@ -12,28 +14,57 @@ if(NOT RFRECON_VXX)
   return()
 endif()
 fpga_tool_version(${RFRECON_VXX} --version "v\\+\\+ v([0-9]+\\.[0-9]+(\\.[0-9]+)?)")
-if(fpga_tool_version VERSION_LESS 2019.2 OR fpga_tool_version VERSION_GREATER_EQUAL 2023.1)
-  message(FATAL_ERROR "v++ ${fpga_tool_version} (${RFRECON_VXX}): the OpenCL C flow supports Vitis 2019.2 to 2022.2; "
-                      "later releases compile only C++ (HLS) and RTL kernels, which rfrecon does not have yet")
+if(fpga_tool_version VERSION_LESS 2019.2)
+  message(FATAL_ERROR "v++ ${fpga_tool_version} (${RFRECON_VXX}): the flow supports Vitis 2019.2 and later")
 endif()
 set(fpga_tool_name v++)
-set(fpga_macro RF_TARGET_XILINX_FPGA)
+if(fpga_tool_version VERSION_LESS 2023.1)
+  set(fpga_macro RF_TARGET_XILINX_FPGA)
+  set(fpga_kernel_kind "OpenCL C kernels")
+else()
+  set(fpga_macro RF_TARGET_HLS)  # defined by each top itself
+  set(fpga_kernel_kind "HLS C++ tops of hw/hls/")
+  # The top of each single work-item entry: the hw/hls/*.cpp file that defines extern "C" void <entry>(.
+  file(GLOB fpga_hls_tops ${CMAKE_CURRENT_SOURCE_DIR}/hls/*.cpp)
+  file(GLOB fpga_hls_headers ${CMAKE_CURRENT_SOURCE_DIR}/hls/*.h)
+  foreach(top IN LISTS fpga_hls_tops)
+    file(READ ${top} text)
+    string(REGEX MATCHALL "extern \"C\" void [A-Za-z0-9_]+\\(" defined "${text}")
+    foreach(definition IN LISTS defined)
+      string(REGEX REPLACE "extern \"C\" void ([A-Za-z0-9_]+)\\(" "\\1" name "${definition}")
+      set(fpga_hls_top_of_${name} ${top})
+    endforeach()
+  endforeach()
+endif()
 message(STATUS "FPGA ${RFRECON_FPGA_BOARD} (${RFRECON_FPGA_DESCRIPTION}): v++ ${fpga_tool_version} "
-               "--platform ${fpga_device}${fpga_stand_in_note}")
+               "--platform ${fpga_device}, ${fpga_kernel_kind}${fpga_stand_in_note}")
 
-set(vxx_common --platform ${fpga_device} ${fpga_includes} -D${fpga_macro}
-               ${RFRECON_FPGA_EXTRA_FLAGS})
+if(fpga_macro STREQUAL "RF_TARGET_HLS")
+  set(vxx_common --platform ${fpga_device} ${fpga_includes} -I ${CMAKE_CURRENT_SOURCE_DIR} ${RFRECON_FPGA_EXTRA_FLAGS})
+else()
+  set(vxx_common --platform ${fpga_device} ${fpga_includes} -D${fpga_macro} ${RFRECON_FPGA_EXTRA_FLAGS})
+endif()
 set(single_names "")
 foreach(entry IN LISTS fpga_single_kernels)
   string(REGEX REPLACE ":.*" "" file ${entry})
   string(REGEX REPLACE ".*:" "" kernel ${entry})
   list(APPEND single_names ${kernel})
+  set(source ${fpga_kernel_dir}/${file})
+  set(depends ${fpga_source_paths})
+  if(fpga_macro STREQUAL "RF_TARGET_HLS")
+    if(NOT fpga_hls_top_of_${kernel})
+      message(FATAL_ERROR "${kernel} (kernels/${file}) has no HLS C++ top in hw/hls/, which Vitis "
+                          "${fpga_tool_version} needs: add one (docs/fpga.md)")
+    endif()
+    set(source ${fpga_hls_top_of_${kernel}})
+    list(APPEND depends ${fpga_hls_tops} ${fpga_hls_headers})
+  endif()
   foreach(target IN ITEMS sw_emu hw_emu hw)
     set(xo ${fpga_out}/xo.${target}/${kernel}.xo)
     add_custom_command(OUTPUT ${xo}
                        COMMAND ${RFRECON_VXX} -c -t ${target} ${vxx_common} -k ${kernel} --temp_dir
-                               ${fpga_out}/_x.${target}/${kernel} -o ${xo} ${fpga_kernel_dir}/${file}
-                       DEPENDS ${fpga_source_paths} WORKING_DIRECTORY ${fpga_out} VERBATIM
+                               ${fpga_out}/_x.${target}/${kernel} -o ${xo} ${source}
+                       DEPENDS ${depends} WORKING_DIRECTORY ${fpga_out} VERBATIM
                        COMMENT "v++ -c ${target}: ${kernel}")
     list(APPEND xo_${target} ${xo})
   endforeach()

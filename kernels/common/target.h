@@ -12,6 +12,9 @@
 //   RF_PARTITION_COMPLETE after a private array's name: keep every element in registers (fully partitioned),
 //                         e.g. `float best[K] RF_PARTITION_COMPLETE;`.
 // On PoCL, GPUs and oclgrind all of them are empty, so the same file runs everywhere.
+//
+// The HLS C++ tops of hw/hls/ (Vitis 2023.1 and later) define RF_TARGET_HLS, for which all of the above are empty and
+//   RF_HLS_PIPELINE       first statement of a loop body: `#pragma HLS PIPELINE II=1` (empty on the OpenCL targets).
 #ifndef RFRECON_KERNELS_COMMON_TARGET_H
 #define RFRECON_KERNELS_COMMON_TARGET_H
 
@@ -36,6 +39,12 @@
 #define RF_UNROLL
 #define RF_IVDEP_SAFELEN(n)
 #define RF_PARTITION_COMPLETE
+#endif
+
+#if defined(RF_TARGET_HLS)
+#define RF_HLS_PIPELINE _Pragma("HLS PIPELINE II=1")
+#else
+#define RF_HLS_PIPELINE
 #endif
 
 #endif  // RFRECON_KERNELS_COMMON_TARGET_H

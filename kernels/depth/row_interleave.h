@@ -18,14 +18,11 @@
 // The on-chip buffers: one row of each input per interleaved row.
 #define RF_ROW_BUFFER (RF_ROW_INTERLEAVE * RF_MAX_ROW_WIDTH)
 
-// Vitis HLS (2023.1 and later) directives of the C++ tops, placed inside the loop body they apply to. Elsewhere
-// empty (the OpenCL targets take kernels/common/target.h's RF_PIPELINE_II and RF_IVDEP_SAFELEN before the loop).
+// The Vitis HLS dependence directive of the interleaved loops (RF_HLS_PIPELINE: kernels/common/target.h).
 // clang-format off
 #if defined(RF_TARGET_HLS)
-#define RF_HLS_PIPELINE _Pragma("HLS PIPELINE II=1")
 #define RF_HLS_DEPENDENCE(var) RF_PRAGMA_(HLS DEPENDENCE variable=var inter RAW distance=RF_ROW_INTERLEAVE true)
 #else
-#define RF_HLS_PIPELINE
 #define RF_HLS_DEPENDENCE(var)
 #endif
 // clang-format on

@@ -10,19 +10,11 @@
 #ifndef RFRECON_KERNELS_DEPTH_ROW_SPACE_H
 #define RFRECON_KERNELS_DEPTH_ROW_SPACE_H
 
+#include "common/portable.h"
+
 #ifdef __OPENCL_VERSION__
-#define RF_GLOBAL __global
-#define RF_INLINE inline
-#define RF_SQRT sqrt
-#define RF_FABS fabs
 #define RF_ON_CHIP(name) name##_on_chip
 #else
-#include <cmath>
-#include <cstddef>
-#define RF_GLOBAL
-#define RF_INLINE inline
-#define RF_SQRT std::sqrt
-#define RF_FABS std::fabs
 #define RF_ON_CHIP(name) name
 #endif
 

@@ -153,8 +153,20 @@ TEST_F(BinaryManifestTest, OtherSourcesAreRefused) {
 TEST_F(BinaryManifestTest, MissingKernelIsRefused) {
   auto manifest = real_manifest();
   auto& kernels = manifest["kernels"];
-  kernels.erase(std::find(kernels.begin(), kernels.end(), "dot_frame_single"));
-  EXPECT_THAT(refusal(write(manifest), "kernels"), HasSubstr("dot_frame_single"));
+  kernels.erase(std::find(kernels.begin(), kernels.end(), "dot_frames_single"));
+  EXPECT_THAT(refusal(write(manifest), "kernels"), HasSubstr("dot_frames_single"));
+}
+
+// An xclbin of the HLS C++ tops (the Vitis 2023.1 flow) records RF_TARGET_HLS, which AMD/Xilinx boards run and
+// Intel boards do not.
+TEST_F(BinaryManifestTest, HlsTopsBinaryIsForAmdBoardsOnly) {
+  auto manifest = real_manifest();
+  manifest["target_macro"] = "RF_TARGET_HLS";
+  const auto binary = write(manifest);
+  DeviceInfo xilinx;
+  xilinx.xilinx_fpga = true;
+  EXPECT_NO_THROW((void)check_binary_manifest(binary, host_manifest_expectation(xilinx)));
+  EXPECT_THAT(refusal(binary, "target_macro"), HasSubstr("expected \"RF_TARGET_INTEL_FPGA\""));
 }
 
 TEST_F(BinaryManifestTest, OtherTargetMacroIsRefused) {

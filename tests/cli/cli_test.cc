@@ -1,6 +1,7 @@
 // The command-line tool's documented exit codes and messages (docs/cli.md), checked by running the built binary.
 #include <csignal>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -10,6 +11,7 @@
 
 #include "host/cli/exit_codes.h"
 #include "tests/common/run_cli.h"
+#include "tests/common/scoped_env.h"
 #include "tests/common/temp_dir.h"
 
 namespace rfrecon::cli {
@@ -46,6 +48,19 @@ TEST(CliTest, DevicesJsonListsTheFields) {
                           "\"fp64\"", "\"fp16\"", "\"programs\": \"source\"", "\"entry\": \""}) {
     EXPECT_THAT(result.output, HasSubstr(key));
   }
+}
+
+// The program cache's stored binaries go; anything else in the directory stays.
+TEST(CliTest, DevicesClearCacheRemovesTheStoredPrograms) {
+  const rfrecon::testing::TempDir dir("clear_cache");
+  std::ofstream(dir.path() / "0123456789abcdef.clbin") << "binary";
+  std::ofstream(dir.path() / "notes.txt") << "kept";
+  const rfrecon::testing::ScopedEnv store("RFRECON_PROGRAM_CACHE", dir.path().c_str());
+  const auto result = run_cli("devices --clear-cache");
+  ASSERT_EQ(result.exit_code, kExitOk) << result.output;
+  EXPECT_THAT(result.output, HasSubstr(dir.path().string() + ", 1 stored program removed"));
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "0123456789abcdef.clbin"));
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "notes.txt"));
 }
 
 TEST(CliTest, CommandLineMistakesAreExitCode2) {

@@ -5,7 +5,8 @@ In a scratch build directory: configures hw/ for the board, builds `all` (no ven
 target, and checks the logged aoc / v++ command lines (every kernel file, the board or platform, the -D target macro,
 the include path of the generated parameters header, the link configuration), the header's default values, the
 manifest beside each binary, the link configuration's memory banks (every
-global buffer of every linked kernel), and that a tool version outside the supported range is refused at configure.
+global buffer of every linked kernel), for AMD boards the same with Vitis 2023.1 (every single work-item entry
+compiled from its HLS C++ top in hw/hls/), and that a tool version outside the supported range is refused at configure.
 
   check_flow.py --board NAME --root SOURCE_DIR --scratch DIR [--cmake PATH]
 """
@@ -20,6 +21,7 @@ import sys
 
 BIN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "bin")
 KERNEL = re.compile(r"__kernel\s+void\s+(\w+)\s*\(([^)]*)\)")
+HLS_TOP = re.compile(r'extern\s+"C"\s+void\s+(\w+)\s*\(([^)]*)\)')
 INTEL = {"520n": "p520_max_sg280l", "pac_a10": "pac_a10", "d5005": "pac_s10_dc"}
 XILINX = {"u250": "xilinx_u250_gen3x16_xdma_4_1_202210_1", "u280": "xilinx_u280_gen3x16_xdma_1_202211_1"}
 
@@ -34,7 +36,8 @@ def expect(condition, message):
 
 
 # The parameters header's defaults (cmake/EmbedKernelsParams.cmake), as the manifest must record them.
-PARAMETERS = {"RF_K": 8, "RF_ROW_INTERLEAVE": 8, "RF_MAX_ROW_WIDTH": 4096, "RF_DOT_SPACINGS": list(range(2, 65))}
+PARAMETERS = {"RF_K": 8, "RF_ROW_INTERLEAVE": 8, "RF_MAX_ROW_WIDTH": 4096, "RF_FRAME_BATCH": 16,
+              "RF_DOT_SPACINGS": list(range(2, 65))}
 PARAMS_H = os.path.join("common", "params.h")
 
 
@@ -135,12 +138,33 @@ def check_link_config(path, single):
            f"{path}: missing banks {sorted(wanted - set(banks))}, extra {sorted(set(banks) - wanted)}")
 
 
-def check_xilinx(args, build, env, files, source_hash):
+def hls_tops(hls_dir):
+    """{entry name: (the hw/hls/*.cpp file that defines it, its pointer arguments' names)}."""
+    tops = {}
+    for name in sorted(os.listdir(hls_dir)):
+        if name.endswith(".cpp"):
+            with open(os.path.join(hls_dir, name), encoding="utf-8") as f:
+                for m in HLS_TOP.finditer(f.read()):
+                    pointers = [re.findall(r"(\w+)\s*$", a)[0] for a in m[2].split(",") if "*" in a]
+                    tops[m[1]] = (os.path.join(hls_dir, name), pointers)
+    return tops
+
+
+def check_xilinx(args, build, env, files, source_hash, hls=False):
+    """The OpenCL C flow (Vitis up to 2022.2), or with `hls` the flow of the HLS C++ tops (2023.1 and later)."""
     device, kernel_dir = XILINX[args.board], os.path.join(args.root, "kernels")
     generated_dir = os.path.join(build, "generated", "kernels")
     config = os.path.join(args.root, "hw", "boards", f"{args.board}.cfg")
     single = {k: buffers for names in files.values() for k, buffers in names.items() if k.endswith("_single")}
     file_of = {k: os.path.join(kernel_dir, f) for f, names in files.items() for k in names}
+    includes, macro = [kernel_dir, generated_dir], "RF_TARGET_XILINX_FPGA"
+    if hls:
+        tops = hls_tops(os.path.join(args.root, "hw", "hls"))
+        expect(set(single) <= set(tops), f"single entries without an HLS top: {sorted(set(single) - set(tops))}")
+        for kernel, buffers in single.items():  # the link config's ports are the OpenCL entries' buffer names
+            expect(tops[kernel][1] == buffers, f"{kernel}: HLS top buffers {tops[kernel][1]}, OpenCL {buffers}")
+        file_of = {k: path for k, (path, _) in tops.items()}
+        includes, macro = includes + [os.path.join(args.root, "hw")], "RF_TARGET_HLS"
     check_link_config(config, single)
     for target, binary in (("sw_emu", f"rfrecon_{args.board}_sw_emu.xclbin"),
                            ("hw_emu", f"rfrecon_{args.board}_hw_emu.xclbin"), ("hw", f"rfrecon_{args.board}.xclbin")):
@@ -154,8 +178,9 @@ def check_xilinx(args, build, env, files, source_hash):
             for flag in ("-t", target), ("--platform", device):
                 expect(line[line.index(flag[0]) + 1] == flag[1], f"{target}: {flag} missing from v++ {' '.join(line)}")
         for line in compiles:
-            expect("-DRF_TARGET_XILINX_FPGA" in line, f"{target}: -DRF_TARGET_XILINX_FPGA missing from v++ {line}")
-            expect(includes_of(line) == [kernel_dir, generated_dir], f"{target}: include paths {includes_of(line)}")
+            defines = [a for a in line if a.startswith("-D")]
+            expect(defines == ([] if hls else ["-DRF_TARGET_XILINX_FPGA"]), f"{target}: -D options {defines} in {line}")
+            expect(includes_of(line) == includes, f"{target}: include paths {includes_of(line)}")
             kernel = line[line.index("-k") + 1]
             expect(line[-1] == file_of.get(kernel), f"{target}: {kernel} compiled from {line[-1]}")
             compiled[kernel] = line[line.index("-o") + 1]
@@ -166,8 +191,8 @@ def check_xilinx(args, build, env, files, source_hash):
         # emconfig.json is made once, by the first emulation target built, and never for hardware.
         emconfig = [c for c in calls if c[0] == "emconfigutil"]
         expect(len(emconfig) == (1 if target == "sw_emu" else 0), f"{target}: emconfigutil {emconfig}")
-        check_manifest(os.path.join(build, binary), target, "v++", "RF_TARGET_XILINX_FPGA", device, args.board,
-                       list(single), source_hash)
+        check_manifest(os.path.join(build, binary), target, "v++", macro, device, args.board, list(single),
+                       source_hash)
     run([args.cmake, "--build", build, "--target", "rfrecon_fpga_report"], env)
     expect(logged(env["RFRECON_STANDIN_LOG"]) == [], "report: the hw .xo files are those of rfrecon_fpga_hw")
 
@@ -197,9 +222,16 @@ def main():
         expect(logged(env["RFRECON_STANDIN_LOG"]) == [], "`all` ran a vendor tool: synthesis must never be in all")
         (check_intel if args.board in INTEL else check_xilinx)(args, os.path.join(build, "flow"), env, files,
                                                               source_hash)
-        too_new = dict(env, RFRECON_STANDIN_VERSION="23.1.0" if args.board in INTEL else "2023.1")
-        refused = run(configure + ["-B", os.path.join(build, "too_new")], too_new, must_pass=False)
-        expect(refused.returncode != 0 and "supports" in refused.stderr, f"tool 23.1 accepted:\n{refused.stderr}")
+        if args.board in XILINX:  # Vitis 2023.1 and later: the HLS C++ tops
+            hls_env = dict(env, RFRECON_STANDIN_VERSION="2023.1")
+            run(configure + ["-B", os.path.join(build, "hls")], hls_env)
+            run([args.cmake, "--build", os.path.join(build, "hls")], hls_env)
+            expect(logged(env["RFRECON_STANDIN_LOG"]) == [], "`all` ran a vendor tool: synthesis must never be in all")
+            check_xilinx(args, os.path.join(build, "hls"), hls_env, files, source_hash, hls=True)
+        unsupported = dict(env, RFRECON_STANDIN_VERSION="23.1.0" if args.board in INTEL else "2019.1")
+        refused = run(configure + ["-B", os.path.join(build, "unsupported")], unsupported, must_pass=False)
+        expect(refused.returncode != 0 and "supports" in refused.stderr,
+               f"tool {unsupported['RFRECON_STANDIN_VERSION']} accepted:\n{refused.stderr}")
     except Failure as failure:
         print(f"fpga_flow_{args.board}: FAILED: {failure}")
         return 1

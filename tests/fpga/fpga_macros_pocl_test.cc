@@ -1,8 +1,9 @@
-// The single work-item depth kernels built with each FPGA target macro (RF_TARGET_INTEL_FPGA, RF_TARGET_XILINX_FPGA:
-// the vendor attributes and pragmas of kernels/common/target.h, which PoCL's clang ignores) and run on the first
-// OpenCL device (PoCL in CI) equal their NDRange twins built without a macro, on the row tiles of the kernel tests.
-// Also with an interleave that does not divide the tiles' rows (3). What this shows: the macros and the interleave
-// leave the kernels' arithmetic unchanged; not what a vendor compiler makes of them.
+// The single work-item kernels built with each FPGA target macro (RF_TARGET_INTEL_FPGA, RF_TARGET_XILINX_FPGA: the
+// vendor attributes and pragmas of kernels/common/target.h, which PoCL's clang ignores, and the compression's
+// divisions by the compile-time dot spacings) and run on the first OpenCL device (PoCL in CI): the depth kernels
+// equal their NDRange twins built without a macro on the row tiles of the kernel tests, also with an interleave that
+// does not divide the tiles' rows (3); the transport kernels equal the C++ reference on the tiny captures. What this
+// shows: the macros leave the kernels' arithmetic unchanged; not what a vendor compiler makes of them.
 #include <string>
 #include <tuple>
 #include <utility>
@@ -12,7 +13,10 @@
 
 #include "host/cl/device_selection.h"
 #include "host/depth/row_solvers.h"
+#include "host/transport/spmv.h"
 #include "tests/depth/row_solver_inputs.h"
+#include "tests/transport/same_transport.h"
+#include "tests/transport/test_capture_feed.h"
 
 namespace rfrecon::depth {
 namespace {
@@ -57,6 +61,28 @@ TEST_P(FpgaMacrosOnPocl, FusionSingleEqualsNdRange) {
                                   this->options()),
                  fuse_rows_opencl(device, programs_, KernelEntry::kNdRange, rows_, z, options, begin, end));
   }
+}
+
+// Decode, compression over several batches (s = 5: 25 frames) and the sparse products, K = 4 (another K than the
+// parameters header's, as `rfrecon transport -k 4` builds it).
+TEST_P(FpgaMacrosOnPocl, TransportSingleEqualsReference) {
+  const auto capture = transport::testing::tiny_capture(5);
+  const auto linear = transport::testing::linearize(capture.frames);
+  const auto setup = transport::testing::setup_for(linear, capture.scene.projector_size, 5, 4);
+  auto reference = transport::make_reference_accumulator(setup);
+  const auto expected = transport::testing::feed_all(*reference, capture.sequence, linear);
+  auto single =
+      transport::make_device_accumulator(setup, devices_.front(), programs_, KernelEntry::kSingleWorkItem, options());
+  transport::testing::expect_same_transport(transport::testing::feed_all(*single, capture.sequence, linear), expected);
+
+  const std::vector<float> light_p(expected.projector_pixels(), 0.5f);
+  const std::vector<float> light_c(expected.camera_pixels(), 0.25f);
+  EXPECT_EQ(
+      transport::primal_opencl(devices_.front(), programs_, KernelEntry::kSingleWorkItem, expected, light_p, options()),
+      transport::primal_reference(expected, light_p));
+  EXPECT_EQ(transport::dual_opencl(devices_.front(), programs_, KernelEntry::kSingleWorkItem,
+                                   transport::transpose(expected), light_c, options()),
+            transport::dual_reference(expected, light_c));
 }
 
 INSTANTIATE_TEST_SUITE_P(Targets, FpgaMacrosOnPocl,

@@ -1,13 +1,23 @@
 // C simulation of the HLS C++ tops (hw/hls/), what Vitis calls csim: the tops compiled by the host's C++ compiler
-// (HLS pragmas ignored) against the C++ references of the row solvers, on the inputs of the OpenCL kernel tests
-// (tests/depth/row_solver_inputs.h), in row tiles and with more rows than one interleaved group.
+// (HLS pragmas ignored) against the C++ references: the row solvers on the inputs of the OpenCL kernel tests
+// (tests/depth/row_solver_inputs.h), in row tiles and with more rows than one interleaved group; the transport's
+// decode, compression and sparse products on the tiny captures of the transport kernel tests; the self-check.
+#include <algorithm>
+#include <array>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "hls/depth_tops.h"
+#include "hls/selfcheck_tops.h"
+#include "hls/transport_tops.h"
 #include "host/depth/row_solvers.h"
+#include "host/selfcheck/axpy.h"
+#include "host/transport/spmv.h"
 #include "tests/depth/row_solver_inputs.h"
+#include "tests/transport/same_transport.h"
+#include "tests/transport/test_capture_feed.h"
 
 namespace rfrecon::depth {
 namespace {
@@ -20,11 +30,11 @@ std::size_t tile_offset(const RectifiedRows& rows, int row) { return static_cast
 std::vector<float> integrate_top(const RectifiedRows& rows, int passes, int row_begin, int row_end) {
   std::vector<float> z(tile_offset(rows, row_end) - tile_offset(rows, row_begin));
   const RfRectifiedRig& rig = rows.rig;
-  integrate_rows_top(rig.f, rig.cx_cam, rig.cx_proj, rig.cy, rig.b, row_begin, row_end - row_begin, rows.width,
-                     rows.proj_width, passes, rows.e_cam.data() + tile_offset(rows, row_begin),
-                     rows.e_proj.data() + static_cast<std::size_t>(row_begin) * rows.proj_width,
-                     rows.z_tri.data() + tile_offset(rows, row_begin), rows.runs.data() + tile_offset(rows, row_begin),
-                     z.data());
+  integrate_rows_single(rig.f, rig.cx_cam, rig.cx_proj, rig.cy, rig.b, row_begin, row_end - row_begin, rows.width,
+                        rows.proj_width, passes, rows.e_cam.data() + tile_offset(rows, row_begin),
+                        rows.e_proj.data() + static_cast<std::size_t>(row_begin) * rows.proj_width,
+                        rows.z_tri.data() + tile_offset(rows, row_begin),
+                        rows.runs.data() + tile_offset(rows, row_begin), z.data());
   return z;
 }
 
@@ -34,12 +44,12 @@ std::vector<float> fuse_top(const RectifiedRows& rows, const std::vector<float>&
   std::vector<float> z(z_all.begin() + static_cast<std::ptrdiff_t>(tile_offset(rows, row_begin)),
                        z_all.begin() + static_cast<std::ptrdiff_t>(tile_offset(rows, row_end)));
   const RfRectifiedRig& rig = rows.rig;
-  fuse_rows_top(rig.f, rig.cx_cam, rig.cx_proj, rig.cy, rig.b, row_begin, row_end - row_begin, rows.width,
-                rows.proj_width, options.iterations, options.sigma_disparity_px, options.sigma_step_mm,
-                rows.e_cam.data() + tile_offset(rows, row_begin),
-                rows.e_proj.data() + static_cast<std::size_t>(row_begin) * rows.proj_width,
-                rows.z_tri.data() + tile_offset(rows, row_begin), rows.runs.data() + tile_offset(rows, row_begin),
-                z.data());
+  fuse_rows_single(rig.f, rig.cx_cam, rig.cx_proj, rig.cy, rig.b, row_begin, row_end - row_begin, rows.width,
+                   rows.proj_width, options.iterations, options.sigma_disparity_px, options.sigma_step_mm,
+                   rows.e_cam.data() + tile_offset(rows, row_begin),
+                   rows.e_proj.data() + static_cast<std::size_t>(row_begin) * rows.proj_width,
+                   rows.z_tri.data() + tile_offset(rows, row_begin), rows.runs.data() + tile_offset(rows, row_begin),
+                   z.data());
   return z;
 }
 
@@ -65,5 +75,109 @@ TEST(HlsCsim, FusionTopMatchesReferenceOnTiles) {
   expect_close(z, reference);
 }
 
+TEST(HlsCsim, SelfcheckTopMatchesReference) {
+  const std::vector<float> x{1, 2, 3, 4, -5};
+  std::vector<float> y{0.5f, -1, 2, 8, 0.25f};
+  const auto expected = selfcheck::axpy_reference(2.0f, x, y);
+  axpy_single(2.0f, x.data(), y.data(), static_cast<unsigned>(y.size()));
+  EXPECT_EQ(y, expected);
+}
+
 }  // namespace
 }  // namespace rfrecon::depth
+
+namespace rfrecon::transport {
+namespace {
+
+// The transport accumulator on the HLS tops, its buffers host vectors, the dot frames batched RF_FRAME_BATCH at a
+// time as the device accumulator batches them.
+class HlsAccumulator final : public TransportAccumulator {
+ public:
+  explicit HlsAccumulator(TransportSetup setup) {
+    setup.thresholds = resolve_thresholds(setup.thresholds, 8);
+    t_ = make_empty_transport(setup);
+    n_ = static_cast<unsigned>(t_.camera_pixels());
+    batch_.resize(static_cast<std::size_t>(RF_FRAME_BATCH) * n_);
+  }
+
+  void add_gray_pair(GrayAxis axis, int bit, const cv::Mat& pattern, const cv::Mat& inverse) override {
+    gray_pair_single(pattern.ptr<float>(), inverse.ptr<float>(), gray_bit_mask(t_.setup, axis, bit),
+                     t_.setup.thresholds.white, (axis == GrayAxis::kColumns ? t_.gray_x : t_.gray_y).data(),
+                     t_.flags.data(), n_);
+  }
+
+  void finish_gray(const cv::Mat& white, const cv::Mat& black) override {
+    white_ = white;
+    black_ = black;
+    gray_finalize_single(white.ptr<float>(), black.ptr<float>(), t_.setup.thresholds.black,
+                         t_.setup.projector_size.width, t_.setup.projector_size.height, t_.gray_x.data(),
+                         t_.gray_y.data(), t_.flags.data(), n_);
+  }
+
+  void add_dot_frame(int offset_x, int offset_y, const cv::Mat& frame) override {
+    std::copy_n(frame.ptr<float>(), n_, batch_.begin() + static_cast<std::ptrdiff_t>(pending_ * n_));
+    offsets_[2 * pending_] = offset_x;
+    offsets_[2 * pending_ + 1] = offset_y;
+    if (++pending_ == RF_FRAME_BATCH) compress_batch();
+  }
+
+  CompressedTransport finish() override {
+    if (pending_ > 0) compress_batch();
+    finalize_single(white_.ptr<float>(), black_.ptr<float>(), t_.setup.dot_spacing > 0 ? 1 : 0,
+                    t_.setup.projector_size.width, t_.setup.thresholds.noise, t_.flags.data(), t_.gray_x.data(),
+                    t_.gray_y.data(), t_.indices.data(), t_.weights.data(), t_.direct_energy.data(),
+                    t_.correspondence.data(), n_);
+    return std::move(t_);
+  }
+
+ private:
+  void compress_batch() {
+    dot_frames_single(batch_.data(), static_cast<int>(pending_), offsets_.data(), t_.setup.dot_spacing,
+                      t_.setup.projector_size.width, t_.setup.projector_size.height, t_.setup.thresholds.noise,
+                      black_.ptr<float>(), t_.flags.data(), t_.gray_x.data(), t_.gray_y.data(), t_.indices.data(),
+                      t_.weights.data(), t_.direct_energy.data(), n_);
+    pending_ = 0;
+    offsets_.fill(0);
+  }
+
+  CompressedTransport t_;
+  unsigned n_ = 0;
+  cv::Mat white_, black_;
+  std::vector<float> batch_;
+  unsigned pending_ = 0;
+  std::array<int, 2 * RF_FRAME_BATCH> offsets_ = {};
+};
+
+// K = RF_K, the tops' (the parameters header's). Gray code only; s = 3, one partial batch of 9 frames; s = 5, 25
+// frames over batches of RF_FRAME_BATCH (16 by default: one full, one partial).
+TEST(HlsCsim, TransportTopsMatchReference) {
+  for (const int spacing : {0, 3, 5}) {
+    SCOPED_TRACE("dot spacing " + std::to_string(spacing));
+    const auto capture = testing::tiny_capture(spacing);
+    const auto linear = testing::linearize(capture.frames);
+    const auto setup = testing::setup_for(linear, capture.scene.projector_size, spacing, RF_K);
+    auto reference = make_reference_accumulator(setup);
+    const auto expected = testing::feed_all(*reference, capture.sequence, linear);
+    HlsAccumulator tops(setup);
+    testing::expect_same_transport(testing::feed_all(tops, capture.sequence, linear), expected);
+  }
+}
+
+// The products sum in the references' order: bit for bit.
+TEST(HlsCsim, SparseProductTopsMatchReference) {
+  const auto transport = testing::tiny_reference_transport(3, RF_K);
+  const auto [light_p, light_c] = testing::random_lights(transport);
+
+  std::vector<float> primal(transport.camera_pixels());
+  primal_single(transport.indices.data(), transport.weights.data(), light_p.data(), primal.data(),
+                static_cast<unsigned>(primal.size()));
+  EXPECT_EQ(primal, primal_reference(transport, light_p));
+  const auto transposed = transpose(transport);
+  std::vector<float> dual(transport.projector_pixels());
+  dual_single(transposed.row_start.data(), transposed.camera_pixel.data(), transposed.weights.data(), light_c.data(),
+              dual.data(), static_cast<unsigned>(dual.size()));
+  EXPECT_EQ(dual, dual_reference(transport, light_c));
+}
+
+}  // namespace
+}  // namespace rfrecon::transport

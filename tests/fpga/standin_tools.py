@@ -13,6 +13,7 @@ import sys
 
 MARK = "rfrecon stand-in: not an FPGA binary"
 KERNEL = re.compile(r"__kernel\s+void\s+(\w+)\s*\(")
+HLS_TOP = re.compile(r'extern\s+"C"\s+void\s+(\w+)\s*\(')
 
 
 class Usage(Exception):
@@ -81,10 +82,13 @@ def aoc(args):
         write(os.path.join(os.path.splitext(output)[0], "reports", "report.html"), f"<p>{MARK}</p>\n")
 
 
+def vxx_version():
+    return os.environ.get("RFRECON_STANDIN_VERSION", "2022.2")
+
+
 def vxx(args):
     if args == ["--version"]:
-        version = os.environ.get("RFRECON_STANDIN_VERSION", "2022.2")
-        print(f"****** v++ v{version} (64-bit) (rfrecon stand-in)\n  **** SW Build 0 on 2022-10-13-17:52:11")
+        print(f"****** v++ v{vxx_version()} (64-bit) (rfrecon stand-in)\n  **** SW Build 0 on 2022-10-13-17:52:11")
         return
     mode, target, platform, kernel, output, config = None, None, None, None, None, None
     includes, defines, inputs = [], [], []
@@ -114,7 +118,7 @@ def vxx(args):
                 includes.append(value)
         elif arg.startswith("-D") and len(arg) > 2:
             defines.append(arg[2:])
-        elif arg.endswith((".cl", ".xo")):
+        elif arg.endswith((".cl", ".cpp", ".xo")):
             inputs.append(arg)
         else:
             raise Usage(f"unexpected argument {arg}")
@@ -124,11 +128,14 @@ def vxx(args):
     if not platform:
         raise Usage("no --platform")
     if mode == "-c":
+        # Vitis 2023.1 and later compile C++ (HLS) kernels only, earlier releases the OpenCL C ones too.
+        hls = tuple(int(part) for part in vxx_version().split(".")[:2]) >= (2023, 1)
+        language = ".cpp" if hls else ".cl"
         check_sources(inputs, includes)
-        if len(inputs) != 1 or not inputs[0].endswith(".cl"):
-            raise Usage(f"v++ -c compiles one .cl file, got {inputs}")
+        if len(inputs) != 1 or not inputs[0].endswith(language):
+            raise Usage(f"v++ {vxx_version()} -c compiles one {language} file, got {inputs}")
         with open(inputs[0], encoding="utf-8") as f:
-            names = KERNEL.findall(f.read())
+            names = (HLS_TOP if hls else KERNEL).findall(f.read())
         if kernel not in names:
             raise Usage(f"-k {kernel}: not a kernel of {inputs[0]} ({names})")
         if not output or not output.endswith(".xo"):

@@ -180,7 +180,7 @@ class TransportOnDevicesTest : public MultiDeviceTest {
   void build_kernels() {
     for (auto& device : devices_) {
       programs_.get(device, "transport/decode.cl");
-      programs_.get(device, "transport/compress.cl", "-DRF_K=" + std::to_string(setup_.entries_per_pixel));
+      programs_.get(device, "transport/compress.cl", transport::transport_build_options(setup_.entries_per_pixel));
     }
   }
 

@@ -1,4 +1,4 @@
-// Scheduler test helpers: environment variables for one scope, and when an injected hang could not be timed.
+// Scheduler test helpers: when an injected hang could not be timed (and ScopedEnv, tests/common/scoped_env.h).
 #pragma once
 
 #include <cstdlib>
@@ -8,35 +8,9 @@
 
 #include "host/cl/device_context.h"
 #include "host/sched/watchdog.h"
+#include "tests/common/scoped_env.h"
 
 namespace rfrecon::testing {
-
-// Sets (or, given nullptr, unsets) an environment variable for one scope (the scheduler reads RFRECON_INJECT_FAULT
-// and RFRECON_TILE_TIMEOUT from it, as the commands do), then restores what was there.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const char* value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old;
-    if (value != nullptr) {
-      ::setenv(name, value, 1);
-    } else {
-      ::unsetenv(name);
-    }
-  }
-  ~ScopedEnv() {
-    if (old_) {
-      ::setenv(name_, old_->c_str(), 1);
-    } else {
-      ::unsetenv(name_);
-    }
-  }
-  ScopedEnv(const ScopedEnv&) = delete;
-  ScopedEnv& operator=(const ScopedEnv&) = delete;
-
- private:
-  const char* name_;
-  std::optional<std::string> old_;
-};
 
 // A single oclgrind device works on the calling thread, untimed (sched::needs_calling_thread): a hang injected there
 // would hang the test.

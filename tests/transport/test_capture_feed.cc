@@ -1,9 +1,39 @@
-// In-memory feeding of capture frames for the transport tests.
+// In-memory feeding of capture frames for the transport tests, and their tiny capture.
 #include "tests/transport/test_capture_feed.h"
+
+#include <random>
+
+#include "host/capture/protocol.h"
 
 namespace rfrecon::transport::testing {
 
 using capture::PatternKind;
+
+TinyCapture tiny_capture(int dot_spacing) {
+  SceneOptions options;
+  options.camera_size = {24, 20};
+  options.projector_size = {16, 12};
+  TinyCapture capture{make_plane_scene(options), {}, {}};
+  capture.sequence = capture::make_protocol({options.projector_size, dot_spacing});
+  capture.frames = render_frames(capture.scene, capture.sequence, dot_spacing, 1.0, 7);
+  return capture;
+}
+
+CompressedTransport tiny_reference_transport(int dot_spacing, int k) {
+  const auto capture = tiny_capture(dot_spacing);
+  const auto linear = linearize(capture.frames);
+  auto reference = make_reference_accumulator(setup_for(linear, capture.scene.projector_size, dot_spacing, k));
+  return feed_all(*reference, capture.sequence, linear);
+}
+
+Lights random_lights(const CompressedTransport& transport) {
+  std::mt19937 random(3);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  Lights lights{std::vector<float>(transport.projector_pixels()), std::vector<float>(transport.camera_pixels())};
+  for (auto& value : lights.projector) value = uniform(random);
+  for (auto& value : lights.camera) value = uniform(random);
+  return lights;
+}
 
 std::vector<cv::Mat> linearize(const std::vector<cv::Mat>& frames) {
   std::vector<cv::Mat> linear;

@@ -1,12 +1,33 @@
-// Feeds in-memory capture frames to a TransportAccumulator in protocol order (the all-at-once path of the tests).
+// Feeds in-memory capture frames to a TransportAccumulator in protocol order (the all-at-once path of the tests), and
+// the tiny capture the kernel tests feed.
 #pragma once
 
 #include <vector>
 
 #include "host/capture/manifest.h"
 #include "host/transport/accumulator.h"
+#include "tests/transport/synthetic_capture.h"
 
 namespace rfrecon::transport::testing {
+
+// A 24 x 20 camera viewing a plane lit by a 16 x 12 projector through the whole protocol with dot spacing s (0: Gray
+// code only): 8-bit frames with noise (seed 7). Tiny, so that CI reruns its tests under oclgrind.
+struct TinyCapture {
+  PlaneScene scene;
+  std::vector<capture::Pattern> sequence;
+  std::vector<cv::Mat> frames;  // 8-bit
+};
+TinyCapture tiny_capture(int dot_spacing);
+
+// The tiny capture's compressed T as the C++ reference accumulator makes it, K entries per pixel.
+CompressedTransport tiny_reference_transport(int dot_spacing, int k);
+
+// Lights for the sparse products of T: uniform in [0, 1), one per projector and one per camera pixel (seed 3).
+struct Lights {
+  std::vector<float> projector;
+  std::vector<float> camera;
+};
+Lights random_lights(const CompressedTransport& transport);
 
 // Linear frames (8-bit readings / 255) of `frames`.
 std::vector<cv::Mat> linearize(const std::vector<cv::Mat>& frames);

@@ -6,14 +6,17 @@
 #include <string>
 #include <vector>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "host/capture/protocol.h"
+#include "host/cl/program_store.h"
 #include "host/cli/commands.h"
 #include "host/core/errors.h"
 #include "host/transport/transport_file.h"
+#include "tests/common/scoped_env.h"
 #include "tests/transport/synthetic_capture.h"
 
 namespace rfrecon::transport {
@@ -89,6 +92,21 @@ TEST_F(TransportCliTest, GoodCaptureGivesTransportAndDualAndPrimalImages) {
   }
   ASSERT_GT(count, primal_image.rows * primal_image.cols / 2);
   EXPECT_NEAR(sum / count, 0.8, 0.02);
+}
+
+// The program cache (docs/performance.md#program-cache): a second run loads the programs the first compiled.
+TEST_F(TransportCliTest, ASecondRunLoadsItsProgramsFromTheProgramCache) {
+  const rfrecon::testing::ScopedEnv store(cl::kProgramCacheEnv, (dir_.path() / "programs").c_str());
+  ::testing::internal::CaptureStdout();
+  run_cli({"transport", capture_.string(), "-o", output_.string()});
+  const std::string first = ::testing::internal::GetCapturedStdout();
+  EXPECT_THAT(first, ::testing::HasSubstr(" compiled, 0 loaded from the program cache")) << first;
+  EXPECT_THAT(first, ::testing::Not(::testing::HasSubstr("programs: 0 compiled"))) << first;
+  ::testing::internal::CaptureStdout();
+  run_cli({"transport", capture_.string(), "-o", (dir_.path() / "again.h5").string()});
+  const std::string second = ::testing::internal::GetCapturedStdout();
+  EXPECT_THAT(second, ::testing::HasSubstr("programs: 0 compiled")) << second;
+  EXPECT_THAT(second, ::testing::HasSubstr("build programs")) << "the builds are a stage of their own";
 }
 
 TEST_F(TransportCliTest, OpencvLayoutWithoutManifestDecodesLikeTheManifest) {

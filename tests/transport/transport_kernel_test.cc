@@ -1,14 +1,18 @@
 // The transport kernels (decode, compress, primal and dual SpMV) against their C++ references, through both entries,
 // and the streaming pipeline against the all-at-once reference. Tiny sizes: CI reruns these under oclgrind.
+#include <algorithm>
 #include <cmath>
-#include <random>
+#include <string>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "host/capture/protocol.h"
 #include "host/cl/device_selection.h"
+#include "host/core/errors.h"
 #include "host/transport/compute_transport.h"
 #include "host/transport/spmv.h"
+#include "kernels/transport/compression.h"
 #include "tests/transport/same_transport.h"
 #include "tests/transport/synthetic_capture.h"
 #include "tests/transport/test_capture_feed.h"
@@ -17,37 +21,47 @@ namespace rfrecon::transport {
 namespace {
 
 using testing::expect_same_transport;
-using testing::PlaneScene;
+using testing::tiny_capture;
 
 constexpr KernelEntry kEntries[] = {KernelEntry::kNdRange, KernelEntry::kSingleWorkItem};
 
-struct TinyCapture {
-  PlaneScene scene;
-  std::vector<capture::Pattern> sequence;
-  std::vector<cv::Mat> frames;  // 8-bit
-};
-
-TinyCapture tiny_capture(int dot_spacing) {
-  testing::SceneOptions options;
-  options.camera_size = {24, 20};
-  options.projector_size = {16, 12};
-  TinyCapture capture{testing::make_plane_scene(options), {}, {}};
-  capture.sequence = capture::make_protocol({options.projector_size, dot_spacing});
-  capture.frames = testing::render_frames(capture.scene, capture.sequence, dot_spacing, 1.0, 7);
-  return capture;
-}
-
 class TransportKernelTest : public ::testing::Test {
  protected:
+  // Decode and compression of the tiny capture with dot spacing s and K entries, both entries on every device,
+  // equal the C++ reference (same_transport.h).
+  void expect_kernels_match_reference(int spacing, int k);
   cl::ProgramCache programs_;
   std::vector<cl::DeviceContext> devices_ = cl::open_devices("");
 };
 
 TEST_F(TransportKernelTest, DecodeAndCompressMatchReferenceWithDotGrid) {
-  // K = 4 < s^2 = 9 candidates, so the insertion network also drops entries.
-  const auto capture = tiny_capture(3);
+  // K = 4 < s^2 candidates, so the insertion network also drops entries. s = 3: one partial batch of 9 frames;
+  // s = 5: 25 frames, full batches of RF_FRAME_BATCH and a partial one unless it divides 25.
+  for (const int spacing : {3, 5}) {
+    SCOPED_TRACE("dot spacing " + std::to_string(spacing));
+    expect_kernels_match_reference(spacing, 4);
+  }
+}
+
+TEST_F(TransportKernelTest, AnotherKThanTheParametersHeadersAlsoMatches) {
+  expect_kernels_match_reference(5, RF_K + 2);
+}
+
+TEST_F(TransportKernelTest, SpacingsOutsideTheKernelsAreRefusedNamingThem) {
+  auto setup = testing::setup_for(testing::linearize(tiny_capture(3).frames), {16, 12}, RF_MAX_DOT_SPACING + 1, 4);
+  try {
+    (void)make_device_accumulator(setup, devices_.front(), programs_, KernelEntry::kNdRange);
+    ADD_FAILURE() << "a dot spacing beyond RF_DOT_SPACINGS was accepted";
+  } catch (const ProcessingError& error) {
+    EXPECT_THAT(error.what(), ::testing::HasSubstr("dot spacing " + std::to_string(RF_MAX_DOT_SPACING + 1)));
+    EXPECT_THAT(error.what(), ::testing::HasSubstr("RF_DOT_SPACINGS"));
+  }
+}
+
+void TransportKernelTest::expect_kernels_match_reference(int spacing, int k) {
+  const auto capture = tiny_capture(spacing);
   const auto linear = testing::linearize(capture.frames);
-  const auto setup = testing::setup_for(linear, capture.scene.projector_size, 3, 4);
+  const auto setup = testing::setup_for(linear, capture.scene.projector_size, spacing, k);
   auto reference = make_reference_accumulator(setup);
   const auto expected = testing::feed_all(*reference, capture.sequence, linear);
   std::size_t valid = 0;
@@ -59,6 +73,22 @@ TEST_F(TransportKernelTest, DecodeAndCompressMatchReferenceWithDotGrid) {
       SCOPED_TRACE(cl::describe(device.info()) + (entry == KernelEntry::kNdRange ? " ndrange" : " single"));
       auto accumulator = make_device_accumulator(setup, device, programs_, entry);
       expect_same_transport(testing::feed_all(*accumulator, capture.sequence, linear), expected);
+    }
+  }
+}
+
+// The compression's divider-free row of a projector index equals the integer quotient for every projector width the
+// host accepts (up to 16384) over all indices of a projector of 2^24 pixels: stepped through, with every index near
+// a multiple of the width, where a float estimate would round across the row boundary.
+TEST(CompressionHelpersTest, RowOfAnIndexIsTheExactQuotient) {
+  for (const int width : {1, 2, 3, 7, 640, 1023, 1024, 1280, 1920, 4095, 4096, 16383, 16384}) {
+    const float inverse = 1.0f / static_cast<float>(width);
+    const int pixels = (1 << 24) / width * width;
+    for (int row = 0; row < pixels / width; row += 1 + row / 64) {
+      for (const int column : {0, 1, width / 2, width - 2, width - 1}) {
+        const int q = row * width + std::max(0, std::min(column, width - 1));
+        ASSERT_EQ(rf_row_of(q, width, inverse), q / width) << "q " << q << " width " << width;
+      }
     }
   }
 }
@@ -123,16 +153,8 @@ TEST_F(TransportKernelTest, GrayCodeOnlyCorrespondencesOnDevicesEqualReferenceEx
 }
 
 TEST_F(TransportKernelTest, PrimalAndDualMatchReferenceAndDenseProduct) {
-  const auto capture = tiny_capture(3);
-  const auto linear = testing::linearize(capture.frames);
-  auto reference = make_reference_accumulator(testing::setup_for(linear, capture.scene.projector_size, 3, 4));
-  const auto transport = testing::feed_all(*reference, capture.sequence, linear);
-  std::mt19937 random(3);
-  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
-  std::vector<float> light_p(transport.projector_pixels());
-  std::vector<float> light_c(transport.camera_pixels());
-  for (auto& value : light_p) value = uniform(random);
-  for (auto& value : light_c) value = uniform(random);
+  const auto transport = testing::tiny_reference_transport(3, 4);
+  const auto [light_p, light_c] = testing::random_lights(transport);
 
   // Dense double-precision products: the references must equal them to float rounding (1e-5 relative of a sum of
   // at most K or a few dozen positive terms of similar size).

@@ -5,10 +5,10 @@
 #include "depth/row_interleave.h"
 #include "hls/depth_tops.h"
 
-extern "C" void fuse_rows_top(float f, float cx_cam, float cx_proj, float cy, float b, int first_row, int rows,
-                              int width, int proj_width, int iterations, float sigma_disparity_px, float sigma_step_mm,
-                              const float* e_cam, const float* e_proj, const float* z_tri, const unsigned char* runs,
-                              float* z) {
+extern "C" void fuse_rows_single(float f, float cx_cam, float cx_proj, float cy, float b, int first_row, int rows,
+                                 int width, int proj_width, int iterations, float sigma_disparity_px,
+                                 float sigma_step_mm, const float* e_cam, const float* e_proj, const float* z_tri,
+                                 const unsigned char* runs, float* z) {
 #pragma HLS INTERFACE mode = m_axi port = e_cam offset = slave bundle = gmem0
 #pragma HLS INTERFACE mode = m_axi port = e_proj offset = slave bundle = gmem1
 #pragma HLS INTERFACE mode = m_axi port = z_tri offset = slave bundle = gmem2

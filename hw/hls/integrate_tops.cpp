@@ -5,9 +5,9 @@
 #include "depth/row_interleave.h"
 #include "hls/depth_tops.h"
 
-extern "C" void integrate_rows_top(float f, float cx_cam, float cx_proj, float cy, float b, int first_row, int rows,
-                                   int width, int proj_width, int passes, const float* e_cam, const float* e_proj,
-                                   const float* z_tri, const unsigned char* runs, float* z) {
+extern "C" void integrate_rows_single(float f, float cx_cam, float cx_proj, float cy, float b, int first_row, int rows,
+                                      int width, int proj_width, int passes, const float* e_cam, const float* e_proj,
+                                      const float* z_tri, const unsigned char* runs, float* z) {
 #pragma HLS INTERFACE mode = m_axi port = e_cam offset = slave bundle = gmem0
 #pragma HLS INTERFACE mode = m_axi port = e_proj offset = slave bundle = gmem1
 #pragma HLS INTERFACE mode = m_axi port = z_tri offset = slave bundle = gmem2

@@ -1,0 +1,26 @@
+// The HLS C++ top functions of the transport kernels for Vitis 2023.1 and later (decode_tops.cpp, compress_tops.cpp,
+// spmv_tops.cpp): the single work-item bodies of kernels/transport/gray_decode.h, compression.h and
+// sparse_products.h behind AXI interfaces, with the arguments and layout of kernels/transport/decode.cl, compress.cl
+// and spmv.cl (K = RF_K, batches of RF_FRAME_BATCH frames). Declared here for their C simulation
+// (tests/fpga/hls_csim_test.cc).
+#pragma once
+
+extern "C" {
+
+void gray_pair_single(const float* pattern, const float* inverse, unsigned bit_mask, float white_threshold,
+                      unsigned* code, unsigned char* flags, unsigned n);
+void gray_finalize_single(const float* white, const float* black, float black_threshold, int projector_width,
+                          int projector_height, unsigned* code_x, unsigned* code_y, unsigned char* flags, unsigned n);
+
+void dot_frames_single(const float* frames, int frame_count, const int* offsets, int spacing, int projector_width,
+                       int projector_height, float noise_threshold, const float* black, const unsigned char* flags,
+                       const unsigned* projector_x, const unsigned* projector_y, int* indices, float* weights,
+                       float* energy, unsigned n);
+void finalize_single(const float* white, const float* black, int has_dots, int projector_width, float noise_threshold,
+                     unsigned char* flags, const unsigned* projector_x, const unsigned* projector_y, int* indices,
+                     float* weights, float* energy, float* correspondence, unsigned n);
+
+void primal_single(const int* indices, const float* weights, const float* light, float* image, unsigned n);
+void dual_single(const int* row_start, const int* camera_pixel, const float* weights, const float* light, float* image,
+                 unsigned n);
+}

@@ -1,0 +1,22 @@
+// What kernel bodies shared by OpenCL C and C++ (the HLS tops, host tests) need from either language: the global
+// address space qualifier, inline functions and the float math they call.
+#ifndef RFRECON_KERNELS_COMMON_PORTABLE_H
+#define RFRECON_KERNELS_COMMON_PORTABLE_H
+
+#ifdef __OPENCL_VERSION__
+#define RF_GLOBAL __global
+#define RF_INLINE inline
+#define RF_SQRT sqrt
+#define RF_FABS fabs
+#define RF_FMA fma
+#else
+#include <cmath>
+#include <cstddef>
+#define RF_GLOBAL
+#define RF_INLINE inline
+#define RF_SQRT std::sqrt
+#define RF_FABS std::fabs
+#define RF_FMA std::fma
+#endif
+
+#endif  // RFRECON_KERNELS_COMMON_PORTABLE_H

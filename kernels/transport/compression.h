@@ -1,0 +1,213 @@
+// Light transport compression per camera pixel, shared by kernels/transport/compress.cl and the HLS C++ tops
+// (hw/hls/): dot-grid frames streamed into fixed-K "ELL" rows (K = RF_K projector indices and weights per camera
+// pixel, strongest first; entry k of pixel c at c * RF_K + k, index -1 marks an empty slot), then the sub-pixel
+// correspondence (weighted centroid).
+//
+// A frame with dot offset (ox, oy), 0 <= ox, oy < s, lights projector pixels with x % s == ox and y % s == oy. A lit
+// camera pixel with Gray code coordinate (px, py) sees the lit dot nearest to it, qx = ox + s * floor((px - ox +
+// s/2) / s) (same for y), so the s x s frames fill its window [px - (s-1)/2, px + s/2] x [py - (s-1)/2, py + s/2]:
+// with x0 = px - (s-1)/2 and a = x0 mod s, qx = x0 + ((ox - a) mod s), where ox - a lies in (-s, s).
+//
+// Frames come in batches of up to RF_FRAME_BATCH (frame f of the batch at f * n + c): a pixel's row is read once per
+// batch, updated in registers frame after frame in the batch's order (so the result equals one frame at a time, to
+// the bit), and written back once, only when a frame of the batch reached it. The only division by the run-time
+// spacing, a = x0 mod s, is done once per pixel and batch; on FPGA targets it is a choice among divisions by the
+// compile-time RF_DOT_SPACINGS (the host refuses other spacings). The centroid's row of an entry, q / width, is a
+// multiplication by 1 / width (computed once) corrected to the exact quotient.
+#ifndef RFRECON_KERNELS_TRANSPORT_COMPRESSION_H
+#define RFRECON_KERNELS_TRANSPORT_COMPRESSION_H
+
+#include "common/params.h"
+#include "common/portable.h"
+#include "common/target.h"
+#include "transport/flags.h"
+
+#if defined(RF_TARGET_INTEL_FPGA) || defined(RF_TARGET_XILINX_FPGA) || defined(RF_TARGET_HLS)
+// x mod s for x >= 0 and s among RF_DOT_SPACINGS: one divider by a constant per supported spacing, no run-time one.
+RF_INLINE int rf_mod_spacing(int x, int s) {
+  const int spacings[RF_DOT_SPACING_COUNT] = RF_DOT_SPACINGS;
+  int r = 0;
+  RF_UNROLL
+  for (int i = 0; i < RF_DOT_SPACING_COUNT; ++i) {
+    if (s == spacings[i]) r = x % spacings[i];
+  }
+  return r;
+}
+#else
+RF_INLINE int rf_mod_spacing(int x, int s) { return x % s; }
+#endif
+
+// The first coordinate of a pixel's s-wide window and its residue mod s (x0 >= -(s-1)/2 > -s).
+RF_INLINE int rf_window_start(unsigned coordinate, int s) { return (int)coordinate - ((s - 1) >> 1); }
+RF_INLINE int rf_window_residue(int x0, int s) { return x0 >= 0 ? rf_mod_spacing(x0, s) : x0 + s; }
+
+// The lit dot of the offset in the window starting at x0 with residue a.
+RF_INLINE int rf_window_dot(int x0, int a, int offset, int s) {
+  const int d = offset - a;
+  return x0 + (d < 0 ? d + s : d);
+}
+
+// Inserts (q, v) into a row held in registers, sorted by decreasing weight (after equal weights), dropping the
+// weakest. Compare-and-shift network: slot k takes v when v beats it but not slot k-1, or slot k-1's entry when v
+// beats that one too; going down from the last slot, every slot is computed from the old row, so the K slots update
+// in parallel in hardware.
+RF_INLINE void rf_insert_entry(int q, float v, int* index, float* weight) {
+  RF_UNROLL
+  for (int k = RF_K - 1; k > 0; --k) {
+    if (v > weight[k]) {
+      const int beats_previous = v > weight[k - 1];
+      weight[k] = beats_previous ? weight[k - 1] : v;
+      index[k] = beats_previous ? index[k - 1] : q;
+    }
+  }
+  if (v > weight[0]) {
+    weight[0] = v;
+    index[0] = q;
+  }
+}
+
+// The pixel and per-batch inputs of the dot-frame compression.
+typedef struct {  // NOLINT(modernize-use-using): shared with OpenCL C, which has no `using`
+  int spacing;
+  int projector_width;
+  int projector_height;
+  float noise_threshold;
+} RfDotGrid;
+
+// A batch of frame_count <= RF_FRAME_BATCH frames (offsets_x/offsets_y: their dot offsets) at pixel c of n.
+RF_INLINE void rf_dot_frames_pixel(unsigned c, unsigned n, int frame_count, const int* offsets_x, const int* offsets_y,
+                                   RfDotGrid grid, RF_GLOBAL const float* frames, RF_GLOBAL const float* black,
+                                   RF_GLOBAL const unsigned char* flags, RF_GLOBAL const unsigned* projector_x,
+                                   RF_GLOBAL const unsigned* projector_y, RF_GLOBAL int* indices,
+                                   RF_GLOBAL float* weights, RF_GLOBAL float* energy) {
+  if (!RF_COMPRESSIBLE(flags[c])) return;
+  const int s = grid.spacing;
+  const int x0 = rf_window_start(projector_x[c], s);
+  const int y0 = rf_window_start(projector_y[c], s);
+  const int ax = rf_window_residue(x0, s);
+  const int ay = rf_window_residue(y0, s);
+  const float dark = black[c];
+  // The batch's contributions first: most pixels see no dot in most batches and keep their row untouched.
+  float value[RF_FRAME_BATCH] RF_PARTITION_COMPLETE;
+  int dot[RF_FRAME_BATCH] RF_PARTITION_COMPLETE;
+  int reached = 0;
+  RF_UNROLL
+  for (int f = 0; f < RF_FRAME_BATCH; ++f) {
+    const int qx = rf_window_dot(x0, ax, offsets_x[f], s);
+    const int qy = rf_window_dot(y0, ay, offsets_y[f], s);
+    const float v = f < frame_count ? frames[(size_t)f * n + c] - dark : 0.0f;
+    const int lit = f < frame_count && v > grid.noise_threshold && qx >= 0 && qx < grid.projector_width && qy >= 0 &&
+                    qy < grid.projector_height;
+    value[f] = lit ? v : 0.0f;
+    dot[f] = lit ? qy * grid.projector_width + qx : -1;
+    reached |= lit;
+  }
+  if (!reached) return;
+  RF_GLOBAL int* row_index = indices + (size_t)c * RF_K;
+  RF_GLOBAL float* row_weight = weights + (size_t)c * RF_K;
+  int index[RF_K] RF_PARTITION_COMPLETE;
+  float weight[RF_K] RF_PARTITION_COMPLETE;
+  RF_UNROLL
+  for (int k = 0; k < RF_K; ++k) {
+    index[k] = row_index[k];
+    weight[k] = row_weight[k];
+  }
+  float e = energy[c];
+  RF_UNROLL
+  for (int f = 0; f < RF_FRAME_BATCH; ++f) {
+    if (dot[f] >= 0) {
+      e += value[f];
+      rf_insert_entry(dot[f], value[f], index, weight);
+    }
+  }
+  RF_UNROLL
+  for (int k = 0; k < RF_K; ++k) {
+    row_index[k] = index[k];
+    row_weight[k] = weight[k];
+  }
+  energy[c] = e;
+}
+
+// The single work-item loop over the n pixels: the batch's offsets copied on chip first.
+RF_INLINE void rf_dot_frames_pixels(unsigned n, int frame_count, RF_GLOBAL const int* offsets, RfDotGrid grid,
+                                    RF_GLOBAL const float* frames, RF_GLOBAL const float* black,
+                                    RF_GLOBAL const unsigned char* flags, RF_GLOBAL const unsigned* projector_x,
+                                    RF_GLOBAL const unsigned* projector_y, RF_GLOBAL int* indices,
+                                    RF_GLOBAL float* weights, RF_GLOBAL float* energy) {
+  int offsets_x[RF_FRAME_BATCH] RF_PARTITION_COMPLETE;
+  int offsets_y[RF_FRAME_BATCH] RF_PARTITION_COMPLETE;
+  RF_UNROLL
+  for (int f = 0; f < RF_FRAME_BATCH; ++f) {
+    offsets_x[f] = offsets[2 * f];
+    offsets_y[f] = offsets[2 * f + 1];
+  }
+  RF_PIPELINE_II(1)
+  for (unsigned c = 0; c < n; ++c) {
+    RF_HLS_PIPELINE
+    rf_dot_frames_pixel(c, n, frame_count, offsets_x, offsets_y, grid, frames, black, flags, projector_x, projector_y,
+                        indices, weights, energy);
+  }
+}
+
+// q / width for 0 <= q, without a divider: the float estimate q * (1 / width) lies within 0.001 of the quotient (a
+// relative error of a few float epsilons on a quotient below 2^14), so its floor is off by at most one, and corrected.
+RF_INLINE int rf_row_of(int q, int width, float inverse_width) {
+  int y = (int)((float)q * inverse_width);
+  if (y * width > q) {
+    --y;
+  } else if ((y + 1) * width <= q) {
+    ++y;
+  }
+  return y;
+}
+
+// Gray-code-only captures (has_dots == 0) first get their single entry T[c, p(c)] = white - black. Then the
+// correspondence is the weight-averaged projector pixel centre of the entries (NaN without any), and lit in-range
+// pixels without an entry are flagged RF_FLAG_NO_SIGNAL.
+RF_INLINE void rf_finalize_pixel(unsigned c, float white, float black, int has_dots, int projector_width,
+                                 float inverse_width, float noise_threshold, RF_GLOBAL unsigned char* flags,
+                                 RF_GLOBAL const unsigned* projector_x, RF_GLOBAL const unsigned* projector_y,
+                                 RF_GLOBAL int* indices, RF_GLOBAL float* weights, RF_GLOBAL float* energy,
+                                 RF_GLOBAL float* correspondence) {
+  const int valid = (flags[c] & (unsigned char)RF_FLAG_VALID) != 0;
+  const float lit = white - black;
+  if (valid && has_dots == 0 && lit > noise_threshold) {
+    indices[(size_t)c * RF_K] = (int)(projector_y[c] * (unsigned)projector_width + projector_x[c]);
+    weights[(size_t)c * RF_K] = lit;
+    energy[c] = lit;
+  }
+  float sum = 0.0f;
+  float sum_x = 0.0f;
+  float sum_y = 0.0f;
+  RF_UNROLL
+  for (int k = 0; k < RF_K; ++k) {
+    const int q = indices[(size_t)c * RF_K + k];
+    if (q >= 0) {
+      const float w = weights[(size_t)c * RF_K + k];
+      const int y = rf_row_of(q, projector_width, inverse_width);
+      sum += w;
+      sum_x += w * (float)(q - y * projector_width);
+      sum_y += w * (float)y;
+    }
+  }
+  const int found = sum > 0.0f;
+  correspondence[2 * (size_t)c] = found ? sum_x / sum : NAN;
+  correspondence[2 * (size_t)c + 1] = found ? sum_y / sum : NAN;
+  if (RF_COMPRESSIBLE(flags[c]) && !found) flags[c] |= (unsigned char)RF_FLAG_NO_SIGNAL;
+}
+
+RF_INLINE void rf_finalize_pixels(unsigned n, RF_GLOBAL const float* white, RF_GLOBAL const float* black, int has_dots,
+                                  int projector_width, float noise_threshold, RF_GLOBAL unsigned char* flags,
+                                  RF_GLOBAL const unsigned* projector_x, RF_GLOBAL const unsigned* projector_y,
+                                  RF_GLOBAL int* indices, RF_GLOBAL float* weights, RF_GLOBAL float* energy,
+                                  RF_GLOBAL float* correspondence) {
+  const float inverse_width = 1.0f / (float)projector_width;
+  RF_PIPELINE_II(1)
+  for (unsigned c = 0; c < n; ++c) {
+    RF_HLS_PIPELINE
+    rf_finalize_pixel(c, white[c], black[c], has_dots, projector_width, inverse_width, noise_threshold, flags,
+                      projector_x, projector_y, indices, weights, energy, correspondence);
+  }
+}
+
+#endif  // RFRECON_KERNELS_TRANSPORT_COMPRESSION_H
