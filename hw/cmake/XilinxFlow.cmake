@@ -21,9 +21,11 @@ set(fpga_tool_name v++)
 if(fpga_tool_version VERSION_LESS 2023.1)
   set(fpga_macro RF_TARGET_XILINX_FPGA)
   set(fpga_kernel_kind "OpenCL C kernels")
+  set(vxx_source_flags -D${fpga_macro})
 else()
   set(fpga_macro RF_TARGET_HLS)  # defined by each top itself
   set(fpga_kernel_kind "HLS C++ tops of hw/hls/")
+  set(vxx_source_flags -I ${CMAKE_CURRENT_SOURCE_DIR})  # the tops include "hls/..."
   # The top of each single work-item entry: the hw/hls/*.cpp file that defines extern "C" void <entry>(.
   file(GLOB fpga_hls_tops ${CMAKE_CURRENT_SOURCE_DIR}/hls/*.cpp)
   file(GLOB fpga_hls_headers ${CMAKE_CURRENT_SOURCE_DIR}/hls/*.h)
@@ -39,11 +41,7 @@ endif()
 message(STATUS "FPGA ${RFRECON_FPGA_BOARD} (${RFRECON_FPGA_DESCRIPTION}): v++ ${fpga_tool_version} "
                "--platform ${fpga_device}, ${fpga_kernel_kind}${fpga_stand_in_note}")
 
-if(fpga_macro STREQUAL "RF_TARGET_HLS")
-  set(vxx_common --platform ${fpga_device} ${fpga_includes} -I ${CMAKE_CURRENT_SOURCE_DIR} ${RFRECON_FPGA_EXTRA_FLAGS})
-else()
-  set(vxx_common --platform ${fpga_device} ${fpga_includes} -D${fpga_macro} ${RFRECON_FPGA_EXTRA_FLAGS})
-endif()
+set(vxx_common --platform ${fpga_device} ${fpga_includes} ${vxx_source_flags} ${RFRECON_FPGA_EXTRA_FLAGS})
 set(single_names "")
 foreach(entry IN LISTS fpga_single_kernels)
   string(REGEX REPLACE ":.*" "" file ${entry})

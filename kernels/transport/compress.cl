@@ -18,10 +18,7 @@ __kernel void dot_frames_ndrange(__global const float* restrict frames, int fram
   if (c >= n) return;
   int offsets_x[RF_FRAME_BATCH];
   int offsets_y[RF_FRAME_BATCH];
-  for (int f = 0; f < RF_FRAME_BATCH; ++f) {
-    offsets_x[f] = offsets[2 * f];
-    offsets_y[f] = offsets[2 * f + 1];
-  }
+  rf_load_dot_offsets(offsets, offsets_x, offsets_y);
   const RfDotGrid grid = {spacing, projector_width, projector_height, noise_threshold};
   rf_dot_frames_pixel(c, n, frame_count, offsets_x, offsets_y, grid, frames, black, flags, projector_x, projector_y,
                       indices, weights, energy);

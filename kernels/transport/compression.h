@@ -128,6 +128,15 @@ RF_INLINE void rf_dot_frames_pixel(unsigned c, unsigned n, int frame_count, cons
   energy[c] = e;
 }
 
+// The batch's RF_FRAME_BATCH (x, y) dot offsets, copied from `offsets` into private arrays.
+RF_INLINE void rf_load_dot_offsets(RF_GLOBAL const int* offsets, int* offsets_x, int* offsets_y) {
+  RF_UNROLL
+  for (int f = 0; f < RF_FRAME_BATCH; ++f) {
+    offsets_x[f] = offsets[2 * f];
+    offsets_y[f] = offsets[2 * f + 1];
+  }
+}
+
 // The single work-item loop over the n pixels: the batch's offsets copied on chip first.
 RF_INLINE void rf_dot_frames_pixels(unsigned n, int frame_count, RF_GLOBAL const int* offsets, RfDotGrid grid,
                                     RF_GLOBAL const float* frames, RF_GLOBAL const float* black,
@@ -136,11 +145,7 @@ RF_INLINE void rf_dot_frames_pixels(unsigned n, int frame_count, RF_GLOBAL const
                                     RF_GLOBAL float* weights, RF_GLOBAL float* energy) {
   int offsets_x[RF_FRAME_BATCH] RF_PARTITION_COMPLETE;
   int offsets_y[RF_FRAME_BATCH] RF_PARTITION_COMPLETE;
-  RF_UNROLL
-  for (int f = 0; f < RF_FRAME_BATCH; ++f) {
-    offsets_x[f] = offsets[2 * f];
-    offsets_y[f] = offsets[2 * f + 1];
-  }
+  rf_load_dot_offsets(offsets, offsets_x, offsets_y);
   RF_PIPELINE_II(1)
   for (unsigned c = 0; c < n; ++c) {
     RF_HLS_PIPELINE
