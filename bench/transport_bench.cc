@@ -125,7 +125,7 @@ void BM_DecodeOpenCL(benchmark::State& state) {
     state.PauseTiming();
     accumulator = transport::make_device_accumulator(setup(), device(), programs(), entry);
     state.ResumeTiming();
-    decode(*accumulator);  // uploads every frame and waits for each kernel
+    decode(*accumulator);  // uploads every frame and waits for each batch's kernel
   }
   set_counters(state, static_cast<double>(f.linear.size()), f.linear.size() * frame_bytes());
 }

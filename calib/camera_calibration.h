@@ -43,6 +43,9 @@ struct CalibrationOptions {
   // the square size): for a board that is not perfectly flat. Needs many poses.
   bool refine_board = false;
   int min_views = 3;
+  // Dense correspondences per pose (calib/dense_correspondences.h) added to the joint adjustment of a stereo
+  // calibration; 0 adjusts the corners alone.
+  int dense_points = 2000;
   double min_tilt_spread_deg = 5.0;  // the board normals must span at least this angle (else focal is unobservable)
 };
 

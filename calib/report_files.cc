@@ -63,7 +63,8 @@ json stereo_report_json(const StereoCalibration& calibration) {
   for (std::size_t i = 0; i < calibration.camera.view_names.size(); ++i) {
     views.push_back({{"name", calibration.camera.view_names[i]},
                      {"camera_rms_px", calibration.fit.camera_view_rms_px[i]},
-                     {"projector_rms_px", calibration.fit.projector_view_rms_px[i]}});
+                     {"projector_rms_px", calibration.fit.projector_view_rms_px[i]},
+                     {"dense_rms_px", calibration.fit.dense_view_rms_px[i]}});
   }
   cv::Vec3d om;
   cv::Rodrigues(rig.R, om);

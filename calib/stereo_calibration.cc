@@ -1,13 +1,31 @@
 // Stereo calibration of the camera-projector pair.
 #include "calib/stereo_calibration.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <opencv2/calib3d.hpp>
 
 #include "calib/pose_diversity.h"
 
 namespace rfrecon::calib {
+
+namespace {
+// The RMS length of every corner residual in both devices, as cv::stereoCalibrate reports it (per point, not per
+// coordinate).
+double corner_rms(const StereoFit& fit) {
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const auto* device : {&fit.camera_residuals_px, &fit.projector_residuals_px}) {
+    for (const auto& view : *device) {
+      for (const auto& r : view) sum += r.dot(r);
+      count += view.size();
+    }
+  }
+  return count > 0 ? std::sqrt(sum / static_cast<double>(count)) : 0.0;
+}
+}  // namespace
 
 StereoCalibration calibrate_stereo(const std::vector<StereoView>& views, const BoardSpec& board, cv::Size camera_size,
                                    cv::Size projector_size, const CalibrationOptions& options) {
@@ -39,14 +57,23 @@ StereoCalibration calibrate_stereo(const std::vector<StereoView>& views, const B
   for (const auto& view : views) {
     camera_points.push_back(view.camera_corners);
     projector_points.push_back(view.projector_corners);
-    corners.push_back({view.camera_corners, view.projector_corners});
+    corners.push_back({view.camera_corners, view.projector_corners, view.dense.camera, view.dense.projector});
   }
   const int flags = cv::CALIB_USE_INTRINSIC_GUESS | distortion_flags(options.distortion);
   rig.rms =
       cv::stereoCalibrate(object_points, camera_points, projector_points, rig.camera_matrix, rig.dist_coeffs,
                           rig.projector_matrix, rig.projector_dist_coeffs, camera_size, rig.R, rig.T, rig.E, rig.F,
                           flags, cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 200, 1e-12));
+  const bool dense = std::any_of(views.begin(), views.end(), [](const auto& v) { return !v.dense.camera.empty(); });
+  std::size_t outliers = 0;
+  if (dense) {
+    // 1 px: beyond the corners-only solution's error at those points (it leaves none of the rendered boards' out),
+    // below a misdecoded correspondence's (a Gray bit wrong: a projector pixel or more).
+    outliers = reject_dense_outliers(rig, object_points, corners, options.distortion, 1.0);
+    adjust_stereo(rig, object_points, corners, options.distortion);
+  }
   result.fit = analyse_stereo_fit(rig, object_points, corners, options.distortion);
+  if (dense) rig.rms = corner_rms(result.fit);
   rig.uncertainty = result.fit.uncertainty;
   for (std::size_t i = 0; i < views.size(); ++i) {
     rig.per_view_errors.push_back(std::hypot(result.fit.camera_view_rms_px[i], result.fit.projector_view_rms_px[i]) /
@@ -55,6 +82,10 @@ StereoCalibration calibrate_stereo(const std::vector<StereoView>& views, const B
   compute_stereo_geometry(rig);
 
   result.warnings = pose_set_warnings(static_cast<int>(views.size()), result.camera.tilt_spread_deg);
+  if (outliers > 0) {
+    result.warnings.push_back(std::to_string(outliers) +
+                              " dense correspondences lay over 1 px from the corners' solution and were left out");
+  }
   for (auto warning :
        {coverage_warning("camera", result.camera.coverage), coverage_warning("projector", result.projector.coverage)}) {
     if (!warning.empty()) result.warnings.push_back(std::move(warning));

@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 
 #include "calib/camera_calibration.h"
+#include "calib/dense_correspondences.h"
 #include "calib/rig.h"
 #include "calib/stereo_fit.h"
 
@@ -18,6 +19,7 @@ struct StereoView {
   std::string name;
   std::vector<cv::Point2f> camera_corners;     // camera pixels
   std::vector<cv::Point2f> projector_corners;  // projector pixels, found in the dual image
+  DenseCorrespondences dense;                  // on the board's white squares (none: corners only)
 };
 
 struct StereoCalibration {
@@ -29,7 +31,8 @@ struct StereoCalibration {
 };
 
 // Calibrates camera and projector separately (calibrate_camera checks view count and pose diversity), then adjusts
-// every board pose, both devices and the stereo pose together in cv::stereoCalibrate, then rectifies.
+// every board pose, both devices and the stereo pose together in cv::stereoCalibrate on the corners and, when views
+// hold dense correspondences, once more with them (adjust_stereo), then rectifies.
 StereoCalibration calibrate_stereo(const std::vector<StereoView>& views, const BoardSpec& board, cv::Size camera_size,
                                    cv::Size projector_size, const CalibrationOptions& options = {});
 

@@ -3,20 +3,16 @@
 // adjustment's covariance (as Bouguet's toolbox reports them).
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include <opencv2/core.hpp>
 
 #include "calib/distortion_model.h"
+#include "calib/joint_problem.h"
 #include "calib/rig.h"
 
 namespace rfrecon::calib {
-
-// One board pose's corners in both devices, in the same order as its object points.
-struct StereoCorners {
-  std::vector<cv::Point2f> camera;
-  std::vector<cv::Point2f> projector;
-};
 
 struct StereoFit {
   RigUncertainty uncertainty;
@@ -26,10 +22,24 @@ struct StereoFit {
   std::vector<std::vector<cv::Point2d>> projector_residuals_px;  // same for the projector
   std::vector<double> camera_view_rms_px;
   std::vector<double> projector_view_rms_px;
-  double residual_sigma_px = 0.0;  // sqrt(sum of squared residuals / (residuals - parameters)), per coordinate
+  std::vector<double> dense_view_rms_px;  // of the dense correspondences, per view (0 for a view without them)
+  double residual_sigma_px = 0.0;         // sqrt(sum of squared residuals / (residuals - parameters)), per coordinate
 };
 
-// Given the rig's intrinsics, distortion and R, T (held fixed), fits each board pose to both devices' corners
+// Removes from `corners` every dense correspondence farther than `max_px` from where the rig, with each board pose
+// fitted to its corners alone, puts it (a misdecoded pixel, a speck on the board: the sampling keeps what T says);
+// returns how many were removed.
+std::size_t reject_dense_outliers(const StereoRig& rig, const std::vector<std::vector<cv::Point3f>>& object_points,
+                                  std::vector<StereoCorners>& corners, DistortionModel model, double max_px);
+
+// Adjusts the rig's intrinsics, distortion (the coefficients `model` estimates) and R, T together with every board
+// pose (each started from cv::solvePnP on its camera corners) by Levenberg-Marquardt over all observations, the dense
+// correspondences included, and writes the result into `rig` (R, T and the matrices; E, F and the rectification are
+// left to compute_stereo_geometry). Returns the final RMS residual per coordinate, px.
+double adjust_stereo(StereoRig& rig, const std::vector<std::vector<cv::Point3f>>& object_points,
+                     const std::vector<StereoCorners>& corners, DistortionModel model);
+
+// Given the rig's intrinsics, distortion and R, T (held fixed), fits each board pose to all its observations
 // (Gauss-Newton from cv::solvePnP on the camera corners), then linearises the joint problem (both devices'
 // intrinsics and the coefficients `model` estimates, R, T and every pose) at that solution with a numerical
 // Jacobian and returns sigma^2 (J^T J)^-1's diagonal as standard deviations (NaN when the problem is singular).

@@ -1,10 +1,18 @@
-# The kernels' compile-time parameters (K, row interleave, maximum row width, frame batch, dot spacings) as cache options, and
+# The kernels' compile-time parameters (K, the depth kernels' row interleaves, maximum row width, frame batch, dot spacings) as cache options, and
 # rfrecon_configure_kernel_params(OUT_DIR), which writes OUT_DIR/kernels/common/params.h from
 # kernels/common/params.h.in. The host build (cmake/EmbedKernels.cmake) and the hw/ flows both call it, so a board
 # binary and the host that loads it agree on the values unless they were configured differently, which the binary's
 # manifest then shows (docs/fpga.md).
 set(RFRECON_K 8 CACHE STRING "K, entries per camera pixel: the kernels' and the host's default, fixed in FPGA binaries")
-set(RFRECON_ROW_INTERLEAVE 8 CACHE STRING "Rows the single work-item depth kernels advance together")
+if(DEFINED RFRECON_ROW_INTERLEAVE)
+  message(FATAL_ERROR "RFRECON_ROW_INTERLEAVE is gone: each depth kernel has its own interleave, "
+                      "RFRECON_INTEGRATE_INTERLEAVE and RFRECON_FUSE_INTERLEAVE (docs/fpga.md); remove it from the cache "
+                      "(cmake -U RFRECON_ROW_INTERLEAVE)")
+endif()
+set(RFRECON_INTEGRATE_INTERLEAVE 160 CACHE STRING
+    "Rows the single work-item integration interleaves: the latency in clocks of one RK4 slope (docs/fpga.md)")
+set(RFRECON_FUSE_INTERLEAVE 32 CACHE STRING
+    "Rows the single work-item fusion interleaves: the latency in clocks of its forward sweep's step (docs/fpga.md)")
 set(RFRECON_MAX_ROW_WIDTH 4096 CACHE STRING "Widest row (pixels) a kernel keeps on chip")
 set(RFRECON_FRAME_BATCH 16 CACHE STRING "Dot-grid frames per compression launch (each pixel's ELL row on chip across them)")
 set(rfrecon_default_dot_spacings "")
@@ -25,7 +33,8 @@ endfunction()
 function(rfrecon_configure_kernel_params out_dir)
   # The bounds are the host's: K as `rfrecon transport -k` allows, widths and spacings as its inputs may have.
   rfrecon_check_kernel_param(RFRECON_K 1 64)
-  rfrecon_check_kernel_param(RFRECON_ROW_INTERLEAVE 1 1024)
+  rfrecon_check_kernel_param(RFRECON_INTEGRATE_INTERLEAVE 1 1024)
+  rfrecon_check_kernel_param(RFRECON_FUSE_INTERLEAVE 1 1024)
   rfrecon_check_kernel_param(RFRECON_MAX_ROW_WIDTH 1 16384)
   rfrecon_check_kernel_param(RFRECON_FRAME_BATCH 1 64)
   if(RFRECON_DOT_SPACINGS STREQUAL "")

@@ -2,17 +2,21 @@
 # Calibration accuracy over noise seeds: for each seed, render the checkerboard-poses scene (the rays' placement in
 # their cells and the frames' noise change with the seed), calibrate it, and compare the estimated rig with the
 # truth (`rfrecon evaluate-rig`); then the mean, spread and RMS over the seeds of every figure, as JSON.
-# Usage: scripts/calibration_seeds.sh [--rfrecon BIN] [--seeds N] [--out DIR] [extra simulate options...]
-# Takes about 2 minutes per seed on a 2-core machine.
+# Usage: scripts/calibration_seeds.sh [--rfrecon BIN] [--seeds N] [--out DIR] [--calibrate "OPTIONS"]
+#                                     [extra simulate options...]
+# --calibrate adds options to each `rfrecon calibrate` (e.g. "--dense-points 0"). About 3 minutes per seed on a
+# 2-core machine.
 set -euo pipefail
 rfrecon=build/rfrecon
 seeds=10
 out=calibration-seeds
+calibrate_options=""
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --rfrecon) rfrecon=$2; shift 2 ;;
     --seeds) seeds=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
+    --calibrate) calibrate_options=$2; shift 2 ;;
     *) break ;;
   esac
 done
@@ -21,7 +25,9 @@ for seed in $(seq 1 "$seeds"); do
   dir="$out/seed_$seed"
   if [[ ! -f "$dir/evaluate-rig.json" ]]; then
     "$rfrecon" -q simulate --scene checkerboard-poses --seed "$seed" -o "$dir/poses" --force "$@"
-    "$rfrecon" -q calibrate "$dir"/poses/capture/pose_* --board 9x6 --square 30 -o "$dir/rig.yaml" --force > "$dir/calibrate.txt"
+    # shellcheck disable=SC2086 # the options are words
+    "$rfrecon" -q calibrate "$dir"/poses/capture/pose_* --board 9x6 --square 30 -o "$dir/rig.yaml" --force \
+      $calibrate_options > "$dir/calibrate.txt"
     "$rfrecon" evaluate-rig "$dir/rig.yaml" --truth "$dir/poses/truth/rig.yaml" -o "$dir/evaluate-rig.json" --force
     rm -rf "$dir/poses/capture"  # the frames are large; the truth and the rig stay
   fi

@@ -75,7 +75,8 @@ std::string target_macro(const DeviceInfo& info) {
 
 nlohmann::json host_kernel_parameters() {
   return {{"RF_K", RF_K},
-          {"RF_ROW_INTERLEAVE", RF_ROW_INTERLEAVE},
+          {"RF_INTEGRATE_INTERLEAVE", RF_INTEGRATE_INTERLEAVE},
+          {"RF_FUSE_INTERLEAVE", RF_FUSE_INTERLEAVE},
           {"RF_MAX_ROW_WIDTH", RF_MAX_ROW_WIDTH},
           {"RF_FRAME_BATCH", RF_FRAME_BATCH},
           {"RF_DOT_SPACINGS", std::vector<int> RF_DOT_SPACINGS}};

@@ -34,7 +34,8 @@ class BinaryManifestError : public ClError {
 std::string target_macro(const DeviceInfo& info);
 
 // The parameters header's values (kernels/common/params.h) as a manifest records them: {"RF_K": 8,
-// "RF_ROW_INTERLEAVE": 8, "RF_MAX_ROW_WIDTH": 4096, "RF_FRAME_BATCH": 16, "RF_DOT_SPACINGS": [2, ..., 64]}.
+// "RF_INTEGRATE_INTERLEAVE": 160, "RF_FUSE_INTERLEAVE": 32, "RF_MAX_ROW_WIDTH": 4096, "RF_FRAME_BATCH": 16,
+// "RF_DOT_SPACINGS": [2, ..., 64]}.
 nlohmann::json host_kernel_parameters();
 
 // What a manifest must say for the host to load its binary on a device.

@@ -92,6 +92,7 @@ struct StereoOptions {
   std::filesystem::path report;
   CaptureOptions capture;
   std::string devices;
+  int dense_points = calib::CalibrationOptions{}.dense_points;
   bool force = false;
 };
 
@@ -101,6 +102,7 @@ void run_calibrate(const StereoOptions& options) {
   request.source = capture_source(options.capture);
   request.board = board_spec(options.board);
   request.options = calibration_options(options.board);
+  request.options.dense_points = options.dense_points;
   request.output = options.output;
   request.report_dir = options.report.empty() ? calib::default_report_dir(options.output) : options.report;
   request.force = options.force;
@@ -118,8 +120,8 @@ void run_calibrate(const StereoOptions& options) {
               rig.T.at<double>(1), rig.T.at<double>(2), rig.uncertainty.T.at<double>(0),
               rig.uncertainty.T.at<double>(1), rig.uncertainty.T.at<double>(2));
   for (std::size_t i = 0; i < run.view_names.size(); ++i) {
-    std::printf("  %-24s camera %.4f px  projector %.4f px\n", run.view_names[i].c_str(),
-                result.fit.camera_view_rms_px[i], result.fit.projector_view_rms_px[i]);
+    std::printf("  %-24s camera %.4f px  projector %.4f px  dense %.4f px\n", run.view_names[i].c_str(),
+                result.fit.camera_view_rms_px[i], result.fit.projector_view_rms_px[i], result.fit.dense_view_rms_px[i]);
   }
   std::printf("wrote %s and %s/\n", request.output.c_str(), request.report_dir.c_str());
 }
@@ -144,6 +146,12 @@ void add_calibrate_commands(CLI::App& app) {
   stereo_command->add_option("-o,--output", stereo->output, "Rig file to write (OpenCV YAML)")->required();
   stereo_command->add_option("--report", stereo->report, "Report directory (default: OUTPUT_STEM_report)");
   stereo_command->add_flag("--force", stereo->force, "Replace an existing rig file and report directory");
+  stereo_command
+      ->add_option("--dense-points", stereo->dense_points,
+                   "Camera-projector correspondences per pose, on the board's white squares, added to the joint "
+                   "adjustment (0: corners only)")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
   add_capture_options(stereo_command, stereo->capture);
   add_devices_option(stereo_command, stereo->devices);
   add_tile_timeout_option(stereo_command);

@@ -77,7 +77,9 @@ RigCalibrationRun calibrate_rig(const RigCalibrationRequest& request, std::vecto
     write_image(report.path() / ("dual_" + pose.name + ".png"),
                 calib::draw_corners(pose.dual_image, request.board, pose.projector_corners));
     if (pose.usable()) {
-      views.push_back({pose.name, pose.camera_corners, pose.projector_corners});
+      views.push_back({pose.name, pose.camera_corners, pose.projector_corners,
+                       calib::sample_dense_correspondences(pose.camera_image, captured.correspondence,
+                                                           pose.camera_corners, request.options.dense_points)});
       run.view_names.push_back(pose.name);
     } else {
       spdlog::warn("{}: {}; pose skipped", pose_dir.string(), pose.problem);

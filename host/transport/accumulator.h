@@ -45,7 +45,9 @@ void check_kernel_dot_spacing(int dot_spacing);
 std::unique_ptr<TransportAccumulator> make_reference_accumulator(TransportSetup setup);
 
 // Kernels of kernels/transport/decode.cl and compress.cl; the ELL state stays on the device until finish(). Dot
-// frames are compressed RF_FRAME_BATCH at a time (the last batch at finish()). build_options are added to the
+// frames are compressed RF_FRAME_BATCH at a time (the last batch at finish()); Gray pairs are decoded
+// RF_GRAY_PAIR_BATCH at a time by the single work-item entries (the last batch at finish_gray()) and one at a time by
+// the NDRange entries. build_options are added to the
 // programs' (tests build the single work-item entries with an FPGA target macro on PoCL).
 std::unique_ptr<TransportAccumulator> make_device_accumulator(TransportSetup setup, cl::DeviceContext& device,
                                                               cl::ProgramCache& programs, KernelEntry entry,

@@ -1,11 +1,13 @@
-// The transport accumulator on one OpenCL device: kernels/transport/decode.cl and compress.cl, dot frames gathered
-// into batches of RF_FRAME_BATCH on the device before each compression launch.
+// The transport accumulator on one OpenCL device: kernels/transport/decode.cl and compress.cl, Gray pairs and dot
+// frames gathered into batches on the device before each decode or compression launch.
+#include <algorithm>
 #include <array>
 #include <stdexcept>
 #include <string>
 
 #include "host/cl/kernel_launch.h"
 #include "host/transport/accumulator.h"
+#include "kernels/transport/gray_decode.h"
 
 namespace rfrecon::transport {
 
@@ -15,21 +17,26 @@ class DeviceAccumulator final : public TransportAccumulator {
  public:
   DeviceAccumulator(const TransportSetup& setup, cl::DeviceContext& device, cl::ProgramCache& programs,
                     KernelEntry entry, const std::string& build_options)
-      : setup_(setup), device_(device), entry_(entry), n_(setup.camera_size.area()) {
+      : setup_(setup),
+        device_(device),
+        entry_(entry),
+        n_(setup.camera_size.area()),
+        gray_batch_(entry == KernelEntry::kSingleWorkItem ? kGrayBatch : 1) {
     if (setup.entries_per_pixel < 1) throw std::invalid_argument("transport: K must be at least 1");
     const ::cl::Program decode = programs.get(device, "transport/decode.cl", build_options);
     const ::cl::Program compress =
         programs.get(device, "transport/compress.cl", transport_build_options(setup.entries_per_pixel, build_options));
-    gray_pair_ = cl::make_kernel(decode, "gray_pair", entry);
+    gray_pairs_ = cl::make_kernel(decode, "gray_pairs", entry);
     gray_finalize_ = cl::make_kernel(decode, "gray_finalize", entry);
     dot_frames_ = cl::make_kernel(compress, "dot_frames", entry);
     finalize_ = cl::make_kernel(compress, "finalize", entry);
 
     const std::size_t slots = n_ * static_cast<std::size_t>(setup.entries_per_pixel);
     const ::cl::Context& context = device.context();
-    frame_a_ = cl::make_buffer<float>(context, n_);
-    frame_b_ = cl::make_buffer<float>(context, n_);
-    if (setup.dot_spacing > 0) batch_ = cl::make_buffer<float>(context, kBatch * n_);
+    // Dot frames, or Gray pairs (each pair's two frames): only as many frames as a launch takes.
+    const std::size_t batch_frames = std::max(setup.dot_spacing > 0 ? kBatch : 0, 2 * gray_batch_);
+    batch_ = cl::make_buffer<float>(context, batch_frames * n_);
+    if (entry_ == KernelEntry::kSingleWorkItem) pairs_buffer_ = cl::make_buffer<cl_uint>(context, pairs_.size());
     white_ = cl::make_buffer<float>(context, n_);
     black_ = cl::make_buffer<float>(context, n_);
     correspondence_ = cl::make_buffer<float>(context, 2 * n_);
@@ -44,14 +51,22 @@ class DeviceAccumulator final : public TransportAccumulator {
   }
 
   void add_gray_pair(GrayAxis axis, int bit, const cv::Mat& pattern, const cv::Mat& inverse) override {
-    upload(frame_a_, pattern);
-    upload(frame_b_, inverse);
-    cl::set_args(gray_pair_, frame_a_, frame_b_, static_cast<cl_uint>(gray_bit_mask(setup_, axis, bit)),
-                 setup_.thresholds.white, axis == GrayAxis::kColumns ? gray_x_ : gray_y_, flags_, count());
-    run(gray_pair_);
+    const cl_uint mask = gray_bit_mask(setup_, axis, bit);
+    upload(batch_, pattern, 2 * gray_pending_ * n_);
+    upload(batch_, inverse, (2 * gray_pending_ + 1) * n_);
+    if (entry_ != KernelEntry::kSingleWorkItem) {  // this pair alone, into its axis' code word
+      cl::set_args(gray_pairs_, batch_, mask, setup_.thresholds.white, axis == GrayAxis::kColumns ? gray_x_ : gray_y_,
+                   flags_, count());
+      run(gray_pairs_);
+      return;
+    }
+    pairs_[2 * gray_pending_] = mask;
+    pairs_[2 * gray_pending_ + 1] = axis == GrayAxis::kColumns ? 0 : 1;
+    if (++gray_pending_ == gray_batch_) decode_batch();
   }
 
   void finish_gray(const cv::Mat& white, const cv::Mat& black) override {
+    if (gray_pending_ > 0) decode_batch();
     upload(white_, white);
     upload(black_, black);
     cl::set_args(gray_finalize_, white_, black_, setup_.thresholds.black, setup_.projector_size.width,
@@ -101,6 +116,17 @@ class DeviceAccumulator final : public TransportAccumulator {
     cl::write_buffer(device_.queue(), buffer, frame.ptr<float>(), n_, true, offset);
   }
 
+  // One single work-item launch over the pending Gray pairs; unused slots stay 0 (the kernel skips those pairs).
+  void decode_batch() {
+    // Not blocking: the in-order queue writes it before the launch, and run() waits for both before pairs_ changes.
+    cl::write_buffer(device_.queue(), pairs_buffer_, pairs_.data(), pairs_.size(), false);
+    cl::set_args(gray_pairs_, batch_, static_cast<cl_int>(gray_pending_), pairs_buffer_, setup_.thresholds.white,
+                 gray_x_, gray_y_, flags_, count());
+    run(gray_pairs_);
+    gray_pending_ = 0;
+    pairs_.fill(0);
+  }
+
   // One launch over the pending frames; offsets of unused batch slots stay 0 (the kernel skips those frames).
   void compress_batch() {
     const ::cl::Buffer offsets = cl::upload(device_.context(), offsets_.data(), offsets_.size());
@@ -118,16 +144,25 @@ class DeviceAccumulator final : public TransportAccumulator {
   }
 
   static constexpr std::size_t kBatch = RF_FRAME_BATCH;
+  static constexpr std::size_t kGrayBatch = RF_GRAY_PAIR_BATCH;
 
   TransportSetup setup_;
   cl::DeviceContext& device_;
   KernelEntry entry_;
   std::size_t n_;
-  ::cl::Kernel gray_pair_, gray_finalize_, dot_frames_, finalize_;
-  ::cl::Buffer frame_a_, frame_b_, batch_, white_, black_, gray_x_, gray_y_, flags_, indices_, weights_, energy_,
+  // Gray pairs per decode launch: a whole batch on FPGA boards (single work-item: one read-modify-write of each
+  // pixel's code words in DDR per batch), one on CPUs and GPUs, which decode a pair while its frames are still in
+  // cache (batched, PoCL's decode took twice as long: a launch reads 16 frames spread over the 84 MB batch).
+  std::size_t gray_batch_;
+  ::cl::Kernel gray_pairs_, gray_finalize_, dot_frames_, finalize_;
+  // The batch of Gray pairs or of dot frames: all Gray pairs come before finish_gray, which decodes the last batch
+  // before the first dot frame (the call order of TransportAccumulator).
+  ::cl::Buffer batch_, pairs_buffer_, white_, black_, gray_x_, gray_y_, flags_, indices_, weights_, energy_,
       correspondence_;
-  std::size_t pending_ = 0;                      // frames in batch_ not yet compressed
-  std::array<cl_int, 2 * kBatch> offsets_ = {};  // their (x, y) dot offsets
+  std::size_t gray_pending_ = 0;                    // Gray pairs in batch_ not yet decoded
+  std::array<cl_uint, 2 * kGrayBatch> pairs_ = {};  // their (bit mask, axis)
+  std::size_t pending_ = 0;                         // frames in batch_ not yet compressed
+  std::array<cl_int, 2 * kBatch> offsets_ = {};     // their (x, y) dot offsets
 };
 
 }  // namespace

@@ -38,3 +38,10 @@ foreach(target IN ITEMS emulator report hardware)
                      COMMENT "aoc ${target}: ${RFRECON_FPGA_BOARD}")
   add_custom_target(rfrecon_fpga_${target} DEPENDS ${binary} ${binary}.json)
 endforeach()
+
+# With a real aoc, the emulator binary is a test dependency (tests/fpga/CMakeLists.txt): its target, the binary, and
+# the environment that shows the emulated board to the host (SDK 19.x; later SDKs ignore it).
+if(NOT fpga_stand_in)
+  set_property(GLOBAL PROPERTY RFRECON_FPGA_EMULATION rfrecon_fpga_emulator
+               ${fpga_out}/rfrecon_${RFRECON_FPGA_BOARD}_emulator.aocx CL_CONTEXT_EMULATOR_DEVICE_INTELFPGA=1)
+endif()

@@ -37,8 +37,9 @@ foreach(pair IN ITEMS "binary;${binary_name}" "board;${BOARD}" "device;${DEVICE}
 endforeach()
 list(APPEND fields "  \"stand_in\": ${STAND_IN}")
 string(REPLACE "," ", " dot_spacings "${DOT_SPACINGS}")
-list(APPEND fields "  \"parameters\": {\"RF_K\": ${K}, \"RF_ROW_INTERLEAVE\": ${ROW_INTERLEAVE}, \"RF_MAX_ROW_WIDTH\": \
-${MAX_ROW_WIDTH}, \"RF_FRAME_BATCH\": ${FRAME_BATCH}, \"RF_DOT_SPACINGS\": [${dot_spacings}]}")
+list(APPEND fields "  \"parameters\": {\"RF_K\": ${K}, \"RF_INTEGRATE_INTERLEAVE\": ${INTEGRATE_INTERLEAVE}, \
+\"RF_FUSE_INTERLEAVE\": ${FUSE_INTERLEAVE}, \"RF_MAX_ROW_WIDTH\": ${MAX_ROW_WIDTH}, \"RF_FRAME_BATCH\": \
+${FRAME_BATCH}, \"RF_DOT_SPACINGS\": [${dot_spacings}]}")
 json_list(kernels ${KERNELS})
 list(APPEND fields "  \"kernels\": ${kernels}")
 json_list(sources ${SOURCES})

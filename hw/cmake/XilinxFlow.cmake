@@ -96,3 +96,10 @@ foreach(target IN ITEMS sw_emu hw_emu hw)
   endif()
   add_custom_target(rfrecon_fpga_${target} DEPENDS ${outputs})
 endforeach()
+
+# With a real v++, the software emulation binary is a test dependency (tests/fpga/CMakeLists.txt): its target, the
+# binary, and the environment XRT needs to run it.
+if(NOT fpga_stand_in)
+  set_property(GLOBAL PROPERTY RFRECON_FPGA_EMULATION rfrecon_fpga_sw_emu
+               ${fpga_out}/rfrecon_${RFRECON_FPGA_BOARD}_sw_emu.xclbin XCL_EMULATION_MODE=sw_emu EMCONFIG_PATH=${fpga_out})
+endif()

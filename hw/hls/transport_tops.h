@@ -1,14 +1,14 @@
 // The HLS C++ top functions of the transport kernels for Vitis 2023.1 and later (decode_tops.cpp, compress_tops.cpp,
 // spmv_tops.cpp): the single work-item bodies of kernels/transport/gray_decode.h, compression.h and
 // sparse_products.h behind AXI interfaces, with the arguments and layout of kernels/transport/decode.cl, compress.cl
-// and spmv.cl (K = RF_K, batches of RF_FRAME_BATCH frames). Declared here for their C simulation
-// (tests/fpga/hls_csim_test.cc).
+// and spmv.cl (K = RF_K, batches of RF_FRAME_BATCH frames or RF_GRAY_PAIR_BATCH Gray pairs). Declared here for their C
+// simulation (tests/fpga/hls_csim_test.cc).
 #pragma once
 
 extern "C" {
 
-void gray_pair_single(const float* pattern, const float* inverse, unsigned bit_mask, float white_threshold,
-                      unsigned* code, unsigned char* flags, unsigned n);
+void gray_pairs_single(const float* frames, int pair_count, const unsigned* pairs, float white_threshold,
+                       unsigned* code_x, unsigned* code_y, unsigned char* flags, unsigned n);
 void gray_finalize_single(const float* white, const float* black, float black_threshold, int projector_width,
                           int projector_height, unsigned* code_x, unsigned* code_y, unsigned char* flags, unsigned n);
 

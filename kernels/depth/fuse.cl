@@ -2,7 +2,7 @@
 // row tile [first_row, first_row + rows). z holds the starting depth on entry (the integrated rows) and the fused
 // depth on return. Layout as in integrate.cl.
 //   fuse_rows_ndrange: one work-item per row; c and d are its scratch (Thomas algorithm), of z's size.
-//   fuse_rows_single:  one work-item; RF_ROW_INTERLEAVE rows at a time in on-chip buffers (scratch included), their
+//   fuse_rows_single:  one work-item; RF_FUSE_INTERLEAVE rows at a time in on-chip buffers (scratch included), their
 //                      pixels interleaved in each sweep (kernels/depth/row_interleave.h); rows of at most
 //                      RF_MAX_ROW_WIDTH.
 #include "common/target.h"

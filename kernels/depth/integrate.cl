@@ -2,9 +2,10 @@
 // [first_row, first_row + rows). Buffers hold the tile's rows only: e_cam, z_tri, runs and z are rows x width,
 // e_proj is rows x proj_width.
 //   integrate_rows_ndrange: one work-item per row.
-//   integrate_rows_single:  one work-item; RF_ROW_INTERLEAVE rows at a time in on-chip buffers, advancing together one
-//                           pixel each in turn (kernels/depth/row_interleave.h), so that the dependency of z(u + 1)
-//                           on z(u) lies RF_ROW_INTERLEAVE loop iterations apart; rows of at most RF_MAX_ROW_WIDTH.
+//   integrate_rows_single:  one work-item; RF_INTEGRATE_INTERLEAVE rows at a time in on-chip buffers, advancing
+//                           together one RK4 slope each in turn (kernels/depth/row_interleave.h), so that each slope
+//                           depends on the one RF_INTEGRATE_INTERLEAVE loop iterations earlier; rows of at most
+//                           RF_MAX_ROW_WIDTH.
 #include "common/target.h"
 #include "depth/row_integration.h"
 

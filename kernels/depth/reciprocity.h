@@ -24,6 +24,15 @@ typedef struct {  // NOLINT(modernize-use-using): shared with OpenCL C, which ha
   float b;        // projector centre x in the rectified camera frame, mm
 } RfRectifiedRig;
 
+// The RK4 stages of one step, evaluated one slope at a time so that a single work-item kernel can interleave rows
+// between the slopes (kernels/depth/row_interleave.h): k_last is the previous stage's slope, sum the weighted sum
+// k1 + 2 k2 + 2 k3 + k4 so far, ok is cleared when a slope breaks down.
+typedef struct {  // NOLINT(modernize-use-using): shared with OpenCL C, which has no `using`
+  float k_last;
+  float sum;
+  int ok;
+} RfRk4Stages;
+
 // |s w_x - a w_perp| below this fraction of |w|: the row's plane is seen at grazing angle, the ODE is singular.
 #define RF_GRAZING_LIMIT 1e-3f
 

@@ -39,16 +39,32 @@ RF_INLINE float RF_ROW_FN(rf_slope)(RfRectifiedRig rig, float beta, float u, flo
   return z * w_perp / (rig.f * denominator);
 }
 
-// The RK4 increment z(u + 1) - z(u) from column u (integer, u + 1 < width) at depth z; e_cam is interpolated linearly
-// between the two pixel centres. *ok is cleared when any of the four slopes breaks down.
+// Stage `stage` (0 to 3) of the step from column u (integer) at depth z; e0 and e1 are e_cam at u and u + 1, linearly
+// interpolated between the two pixel centres for the midpoint stages. Stage 0 restarts the step.
+RF_INLINE void RF_ROW_FN(rf_rk4_stage)(RfRectifiedRig rig, float beta, int u, int stage, float z, float e0, float e1,
+                                       RF_ROW_SPACE const float* e_proj_row, int proj_width, RfRk4Stages* rk) {
+  if (stage == 0) rk->ok = 1;
+  const int midpoint = stage == 1 || stage == 2;
+  const float du = stage == 0 ? 0.0f : (midpoint ? 0.5f : 1.0f);
+  const float z_at = stage == 0 ? z : (midpoint ? z + 0.5f * rk->k_last : z + rk->k_last);
+  const float e_at = stage == 0 ? e0 : (midpoint ? 0.5f * (e0 + e1) : e1);
+  const float k = RF_ROW_FN(rf_slope)(rig, beta, (float)u + du, z_at, e_at, e_proj_row, proj_width, &rk->ok);
+  rk->sum = stage == 0 ? k : rk->sum + (midpoint ? 2.0f * k : k);
+  rk->k_last = k;
+}
+
+// The RK4 increment z(u + 1) - z(u) from column u (integer, u + 1 < width) at depth z: its four stages in turn.
+// *ok is cleared when any of the four slopes breaks down.
 RF_INLINE float RF_ROW_FN(rf_rk4_increment)(RfRectifiedRig rig, float beta, int u, float z,
                                             RF_ROW_SPACE const float* e_cam_row, RF_ROW_SPACE const float* e_proj_row,
                                             int proj_width, int* ok) {
-  const float e0 = e_cam_row[u], e1 = e_cam_row[u + 1], e_half = 0.5f * (e0 + e1);
-  const float u0 = (float)u;
-  const float k1 = RF_ROW_FN(rf_slope)(rig, beta, u0, z, e0, e_proj_row, proj_width, ok);
-  const float k2 = RF_ROW_FN(rf_slope)(rig, beta, u0 + 0.5f, z + 0.5f * k1, e_half, e_proj_row, proj_width, ok);
-  const float k3 = RF_ROW_FN(rf_slope)(rig, beta, u0 + 0.5f, z + 0.5f * k2, e_half, e_proj_row, proj_width, ok);
-  const float k4 = RF_ROW_FN(rf_slope)(rig, beta, u0 + 1.0f, z + k3, e1, e_proj_row, proj_width, ok);
-  return (k1 + 2.0f * k2 + 2.0f * k3 + k4) / 6.0f;
+  RfRk4Stages rk = {0.0f, 0.0f, 1};
+  const float e0 = e_cam_row[u], e1 = e_cam_row[u + 1];
+  // Written out rather than looped, so that every stage's selects fold away.
+  RF_ROW_FN(rf_rk4_stage)(rig, beta, u, 0, z, e0, e1, e_proj_row, proj_width, &rk);
+  RF_ROW_FN(rf_rk4_stage)(rig, beta, u, 1, z, e0, e1, e_proj_row, proj_width, &rk);
+  RF_ROW_FN(rf_rk4_stage)(rig, beta, u, 2, z, e0, e1, e_proj_row, proj_width, &rk);
+  RF_ROW_FN(rf_rk4_stage)(rig, beta, u, 3, z, e0, e1, e_proj_row, proj_width, &rk);
+  if (!rk.ok) *ok = 0;
+  return rk.sum / 6.0f;
 }

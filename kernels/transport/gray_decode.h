@@ -1,18 +1,63 @@
 // Gray code decoding per camera pixel (OpenCV GrayCodePattern semantic), shared by kernels/transport/decode.cl and
 // the HLS C++ top (hw/hls/). State per pixel: the Gray words of both axes (a bit set where pattern > inverse) and the
 // flags. Frames are linear camera responses in [0, 1] (host/capture/manifest.h); thresholds in the same units.
+//
+// Pattern / inverse pairs come in batches of up to RF_GRAY_PAIR_BATCH (pair p of the batch: pattern at 2p * n + c,
+// inverse at (2p + 1) * n + c), so that a pixel's state is read once per batch, updated in registers pair after pair
+// in the batch's order (equal to one pair at a time, to the bit) and written back once: on an FPGA, one
+// read-modify-write of DDR per batch rather than per pair.
 #ifndef RFRECON_KERNELS_TRANSPORT_GRAY_DECODE_H
 #define RFRECON_KERNELS_TRANSPORT_GRAY_DECODE_H
 
+#include "common/params.h"
 #include "common/portable.h"
 #include "common/target.h"
 #include "transport/flags.h"
 
-// One pattern / inverse pair at pixel c.
-RF_INLINE void rf_gray_pair_pixel(unsigned c, float pattern, float inverse, unsigned bit_mask, float white_threshold,
-                                  RF_GLOBAL unsigned* code, RF_GLOBAL unsigned char* flags) {
-  if (pattern > inverse) code[c] |= bit_mask;
-  if (RF_FABS(pattern - inverse) <= white_threshold) flags[c] |= (unsigned char)RF_FLAG_LOW_CONTRAST;
+// The pairs of a batch fill the compression's batch buffer of RF_FRAME_BATCH frames (at least one pair, for which
+// the host makes that buffer two frames long when RF_FRAME_BATCH is 1).
+#define RF_GRAY_PAIR_BATCH (RF_FRAME_BATCH >= 2 ? RF_FRAME_BATCH / 2 : 1)
+
+// What one pattern / inverse pair adds at a pixel: bit `mask` of its axis' code word where the pattern is the
+// brighter, and the low-contrast flag where the two differ by no more than the threshold.
+RF_INLINE unsigned rf_gray_pair_bit(float pattern, float inverse, unsigned mask) {
+  return pattern > inverse ? mask : 0u;
+}
+RF_INLINE unsigned char rf_gray_pair_flag(float pattern, float inverse, float white_threshold) {
+  return RF_FABS(pattern - inverse) <= white_threshold ? (unsigned char)RF_FLAG_LOW_CONTRAST : (unsigned char)0;
+}
+
+// A batch of pair_count <= RF_GRAY_PAIR_BATCH pairs at pixel c of n, unrolled to the batch's size (the single
+// work-item entries): pair p sets masks[p] in code_x (axes[p] == 0) or code_y.
+RF_INLINE void rf_gray_pairs_pixel(unsigned c, unsigned n, int pair_count, const unsigned* masks, const unsigned* axes,
+                                   float white_threshold, RF_GLOBAL const float* frames, RF_GLOBAL unsigned* code_x,
+                                   RF_GLOBAL unsigned* code_y, RF_GLOBAL unsigned char* flags) {
+  unsigned x = code_x[c];
+  unsigned y = code_y[c];
+  unsigned char f = flags[c];
+  RF_UNROLL
+  for (int p = 0; p < RF_GRAY_PAIR_BATCH; ++p) {
+    const int active = p < pair_count;
+    const float pattern = active ? frames[(size_t)(2 * p) * n + c] : 0.0f;
+    const float inverse = active ? frames[(size_t)(2 * p + 1) * n + c] : 0.0f;
+    // Selects rather than branches: one straight datapath on FPGAs.
+    const unsigned bit = active ? rf_gray_pair_bit(pattern, inverse, masks[p]) : 0u;
+    x |= axes[p] != 0 ? 0u : bit;
+    y |= axes[p] != 0 ? bit : 0u;
+    f |= active ? rf_gray_pair_flag(pattern, inverse, white_threshold) : (unsigned char)0;
+  }
+  code_x[c] = x;
+  code_y[c] = y;
+  flags[c] = f;
+}
+
+// The batch's RF_GRAY_PAIR_BATCH (bit mask, axis) pairs, copied from `pairs` into private arrays.
+RF_INLINE void rf_load_gray_pairs(RF_GLOBAL const unsigned* pairs, unsigned* masks, unsigned* axes) {
+  RF_UNROLL
+  for (int p = 0; p < RF_GRAY_PAIR_BATCH; ++p) {
+    masks[p] = pairs[(size_t)(2 * p)];
+    axes[p] = pairs[(size_t)(2 * p + 1)];
+  }
 }
 
 RF_INLINE unsigned rf_gray_to_binary(unsigned gray) {
@@ -40,14 +85,18 @@ RF_INLINE void rf_gray_finalize_pixel(unsigned c, float white, float black, floa
   flags[c] = f;
 }
 
-// The single work-item loops over the n pixels (the OpenCL `_single` entries and the HLS tops).
-RF_INLINE void rf_gray_pair_pixels(unsigned n, RF_GLOBAL const float* pattern, RF_GLOBAL const float* inverse,
-                                   unsigned bit_mask, float white_threshold, RF_GLOBAL unsigned* code,
-                                   RF_GLOBAL unsigned char* flags) {
+// The single work-item loops over the n pixels (the OpenCL `_single` entries and the HLS tops); the batch's pairs
+// copied on chip first.
+RF_INLINE void rf_gray_pairs_pixels(unsigned n, int pair_count, RF_GLOBAL const unsigned* pairs, float white_threshold,
+                                    RF_GLOBAL const float* frames, RF_GLOBAL unsigned* code_x,
+                                    RF_GLOBAL unsigned* code_y, RF_GLOBAL unsigned char* flags) {
+  unsigned masks[RF_GRAY_PAIR_BATCH] RF_PARTITION_COMPLETE;
+  unsigned axes[RF_GRAY_PAIR_BATCH] RF_PARTITION_COMPLETE;
+  rf_load_gray_pairs(pairs, masks, axes);
   RF_PIPELINE_II(1)
   for (unsigned c = 0; c < n; ++c) {
     RF_HLS_PIPELINE
-    rf_gray_pair_pixel(c, pattern[c], inverse[c], bit_mask, white_threshold, code, flags);
+    rf_gray_pairs_pixel(c, n, pair_count, masks, axes, white_threshold, frames, code_x, code_y, flags);
   }
 }
 

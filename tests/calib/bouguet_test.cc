@@ -97,7 +97,7 @@ TEST_F(BouguetTest, StereoPoseMatchesTheToolbox) {
     for (const auto& r : right) {
       if (r.name != partner) continue;
       // Both detectors number the board from the same end on these images when the first corners are close.
-      StereoView view{l.name, l.corners, r.corners};
+      StereoView view{l.name, l.corners, r.corners, {}};
       if (cv::norm(view.camera_corners.front() - view.projector_corners.front()) >
           cv::norm(view.camera_corners.front() - view.projector_corners.back())) {
         std::reverse(view.projector_corners.begin(), view.projector_corners.end());

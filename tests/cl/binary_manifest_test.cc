@@ -123,8 +123,11 @@ TEST_F(BinaryManifestTest, FlowBuiltForAnotherKIsRefused) {
 
 TEST_F(BinaryManifestTest, WrongInterleaveIsRefused) {
   auto manifest = real_manifest();
-  manifest["parameters"]["RF_ROW_INTERLEAVE"] = RF_ROW_INTERLEAVE + 1;
-  (void)refusal(write(manifest), "parameters.RF_ROW_INTERLEAVE");
+  manifest["parameters"]["RF_INTEGRATE_INTERLEAVE"] = RF_INTEGRATE_INTERLEAVE + 1;
+  (void)refusal(write(manifest), "parameters.RF_INTEGRATE_INTERLEAVE");
+  manifest = real_manifest();
+  manifest["parameters"]["RF_FUSE_INTERLEAVE"] = RF_FUSE_INTERLEAVE - 1;
+  (void)refusal(write(manifest), "parameters.RF_FUSE_INTERLEAVE");
 }
 
 TEST_F(BinaryManifestTest, OtherDotSpacingsAreRefused) {

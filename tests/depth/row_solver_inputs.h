@@ -25,9 +25,9 @@ inline float pseudo_noise(std::size_t i) {
   return static_cast<float>(std::sin(12.9898 * static_cast<double>(i) + 1.0));
 }
 
-// 11 rows of 24 pixels, +-0.5 mm noise on the triangulated depths, one masked pixel then a new run in row 5.
-inline RectifiedRows kernel_test_rows() {
-  RectifiedRows rows = analytic_rows(tilted_plane(), 24, 11);
+// `height` rows of 24 pixels, +-0.5 mm noise on the triangulated depths, one masked pixel then a new run in row 5.
+inline RectifiedRows kernel_test_rows(int height = 11) {
+  RectifiedRows rows = analytic_rows(tilted_plane(), 24, height);
   for (std::size_t i = 0; i < rows.z_tri.size(); ++i) rows.z_tri[i] += 0.5f * pseudo_noise(i);
   rows.runs[5 * 24 + 7] = RF_RUN_MASKED;
   rows.runs[5 * 24 + 8] = RF_RUN_START;

@@ -36,8 +36,8 @@ def expect(condition, message):
 
 
 # The parameters header's defaults (cmake/EmbedKernelsParams.cmake), as the manifest must record them.
-PARAMETERS = {"RF_K": 8, "RF_ROW_INTERLEAVE": 8, "RF_MAX_ROW_WIDTH": 4096, "RF_FRAME_BATCH": 16,
-              "RF_DOT_SPACINGS": list(range(2, 65))}
+PARAMETERS = {"RF_K": 8, "RF_INTEGRATE_INTERLEAVE": 160, "RF_FUSE_INTERLEAVE": 32, "RF_MAX_ROW_WIDTH": 4096,
+              "RF_FRAME_BATCH": 16, "RF_DOT_SPACINGS": list(range(2, 65))}
 PARAMS_H = os.path.join("common", "params.h")
 
 

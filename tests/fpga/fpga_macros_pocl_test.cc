@@ -85,11 +85,25 @@ TEST_P(FpgaMacrosOnPocl, TransportSingleEqualsReference) {
             transport::dual_reference(expected, light_c));
 }
 
-INSTANTIATE_TEST_SUITE_P(Targets, FpgaMacrosOnPocl,
-                         ::testing::Values(Build{"Intel", "-DRF_TARGET_INTEL_FPGA"},
-                                           Build{"Xilinx", "-DRF_TARGET_XILINX_FPGA"},
-                                           Build{"IntelInterleave3", "-DRF_TARGET_INTEL_FPGA -DRF_ROW_INTERLEAVE=3"}),
-                         [](const auto& info) { return std::string(info.param.name); });
+// Gray pairs over one full batch of RF_GRAY_PAIR_BATCH and a partial one.
+TEST_P(FpgaMacrosOnPocl, GrayPairsOverAFullAndAPartialBatchEqualReference) {
+  const auto capture = transport::testing::tiny_gray_capture_over_batches();
+  if (!capture) GTEST_SKIP() << "no tiny partial batch of Gray pairs";
+  const auto linear = transport::testing::linearize(capture->frames);
+  const auto setup = transport::testing::setup_for(linear, capture->scene.projector_size, 0, 2);
+  auto reference = transport::make_reference_accumulator(setup);
+  const auto expected = transport::testing::feed_all(*reference, capture->sequence, linear);
+  auto single =
+      transport::make_device_accumulator(setup, devices_.front(), programs_, KernelEntry::kSingleWorkItem, options());
+  transport::testing::expect_same_transport(transport::testing::feed_all(*single, capture->sequence, linear), expected);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Targets, FpgaMacrosOnPocl,
+    ::testing::Values(Build{"Intel", "-DRF_TARGET_INTEL_FPGA"}, Build{"Xilinx", "-DRF_TARGET_XILINX_FPGA"},
+                      Build{"IntelInterleave3",
+                            "-DRF_TARGET_INTEL_FPGA -DRF_INTEGRATE_INTERLEAVE=3 -DRF_FUSE_INTERLEAVE=3"}),
+    [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
 }  // namespace rfrecon::depth

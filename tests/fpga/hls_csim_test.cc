@@ -1,13 +1,17 @@
 // C simulation of the HLS C++ tops (hw/hls/), what Vitis calls csim: the tops compiled by the host's C++ compiler
 // (HLS pragmas ignored) against the C++ references: the row solvers on the inputs of the OpenCL kernel tests
-// (tests/depth/row_solver_inputs.h), in row tiles and with more rows than one interleaved group; the transport's
+// (tests/depth/row_solver_inputs.h, as many rows as one interleaved group and a few more), in row tiles smaller than,
+// equal to and not dividing a group, with the parameters header's interleaves; the transport's
 // decode, compression and sparse products on the tiny captures of the transport kernel tests; the self-check.
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <pthread.h>
 
 #include "hls/depth_tops.h"
 #include "hls/selfcheck_tops.h"
@@ -15,6 +19,7 @@
 #include "host/depth/row_solvers.h"
 #include "host/selfcheck/axpy.h"
 #include "host/transport/spmv.h"
+#include "kernels/transport/gray_decode.h"
 #include "tests/depth/row_solver_inputs.h"
 #include "tests/transport/same_transport.h"
 #include "tests/transport/test_capture_feed.h"
@@ -26,15 +31,34 @@ using testing::expect_close;
 
 std::size_t tile_offset(const RectifiedRows& rows, int row) { return static_cast<std::size_t>(row) * rows.width; }
 
+// The depth tops keep R x RF_MAX_ROW_WIDTH rows in arrays that are on-chip memory on a board and the stack here (11 MB
+// for the integration's defaults, more than a main thread's usual 8 MB), so they run on a thread with a 64 MB stack.
+template <typename Top>
+void on_large_stack(Top top) {
+  pthread_attr_t attributes;
+  ASSERT_EQ(pthread_attr_init(&attributes), 0);
+  ASSERT_EQ(pthread_attr_setstacksize(&attributes, std::size_t{64} << 20), 0);
+  pthread_t thread;
+  const auto run = [](void* argument) -> void* {
+    (*static_cast<Top*>(argument))();
+    return nullptr;
+  };
+  ASSERT_EQ(pthread_create(&thread, &attributes, run, &top), 0);
+  ASSERT_EQ(pthread_join(thread, nullptr), 0);
+  pthread_attr_destroy(&attributes);
+}
+
 // The integration top over rows [row_begin, row_end): its buffers hold the tile's rows only, as the kernels' do.
 std::vector<float> integrate_top(const RectifiedRows& rows, int passes, int row_begin, int row_end) {
   std::vector<float> z(tile_offset(rows, row_end) - tile_offset(rows, row_begin));
   const RfRectifiedRig& rig = rows.rig;
-  integrate_rows_single(rig.f, rig.cx_cam, rig.cx_proj, rig.cy, rig.b, row_begin, row_end - row_begin, rows.width,
-                        rows.proj_width, passes, rows.e_cam.data() + tile_offset(rows, row_begin),
-                        rows.e_proj.data() + static_cast<std::size_t>(row_begin) * rows.proj_width,
-                        rows.z_tri.data() + tile_offset(rows, row_begin),
-                        rows.runs.data() + tile_offset(rows, row_begin), z.data());
+  on_large_stack([&] {
+    integrate_rows_single(rig.f, rig.cx_cam, rig.cx_proj, rig.cy, rig.b, row_begin, row_end - row_begin, rows.width,
+                          rows.proj_width, passes, rows.e_cam.data() + tile_offset(rows, row_begin),
+                          rows.e_proj.data() + static_cast<std::size_t>(row_begin) * rows.proj_width,
+                          rows.z_tri.data() + tile_offset(rows, row_begin),
+                          rows.runs.data() + tile_offset(rows, row_begin), z.data());
+  });
   return z;
 }
 
@@ -44,35 +68,47 @@ std::vector<float> fuse_top(const RectifiedRows& rows, const std::vector<float>&
   std::vector<float> z(z_all.begin() + static_cast<std::ptrdiff_t>(tile_offset(rows, row_begin)),
                        z_all.begin() + static_cast<std::ptrdiff_t>(tile_offset(rows, row_end)));
   const RfRectifiedRig& rig = rows.rig;
-  fuse_rows_single(rig.f, rig.cx_cam, rig.cx_proj, rig.cy, rig.b, row_begin, row_end - row_begin, rows.width,
-                   rows.proj_width, options.iterations, options.sigma_disparity_px, options.sigma_step_mm,
-                   rows.e_cam.data() + tile_offset(rows, row_begin),
-                   rows.e_proj.data() + static_cast<std::size_t>(row_begin) * rows.proj_width,
-                   rows.z_tri.data() + tile_offset(rows, row_begin), rows.runs.data() + tile_offset(rows, row_begin),
-                   z.data());
+  on_large_stack([&] {
+    fuse_rows_single(rig.f, rig.cx_cam, rig.cx_proj, rig.cy, rig.b, row_begin, row_end - row_begin, rows.width,
+                     rows.proj_width, options.iterations, options.sigma_disparity_px, options.sigma_step_mm,
+                     rows.e_cam.data() + tile_offset(rows, row_begin),
+                     rows.e_proj.data() + static_cast<std::size_t>(row_begin) * rows.proj_width,
+                     rows.z_tri.data() + tile_offset(rows, row_begin), rows.runs.data() + tile_offset(rows, row_begin),
+                     z.data());
+  });
   return z;
 }
 
 // The tolerance is the OpenCL kernels' (tests/depth/row_solver_inputs.h): the tops run the same per-row arithmetic
 // as the references, only with the rows' pixels interleaved, so they should agree far more closely.
-TEST(HlsCsim, IntegrationTopMatchesReferenceOnTiles) {
-  const auto rows = testing::kernel_test_rows();
-  const auto reference = integrate_rows_reference(rows, IntegrationOptions{3}, 0, rows.height);
-  auto z = integrate_top(rows, 3, 0, 2);                     // a tile smaller than one interleaved group
-  const auto rest = integrate_top(rows, 3, 2, rows.height);  // one full group and a partial one
-  z.insert(z.end(), rest.begin(), rest.end());
+// Tiles of 2 rows (smaller than a group), R rows (one whole group) and the rest (a group and a partial one when the
+// rows are 2R + 3, else a partial one).
+void expect_tiles_match(int interleave, const std::function<std::vector<float>(int, int)>& top,
+                        const std::vector<float>& reference, int height) {
+  std::vector<float> z;
+  for (const auto& [begin, end] : {std::pair{0, 2}, std::pair{2, 2 + interleave}, std::pair{2 + interleave, height}}) {
+    const auto tile = top(begin, end);
+    z.insert(z.end(), tile.begin(), tile.end());
+  }
   expect_close(z, reference);
 }
 
+TEST(HlsCsim, IntegrationTopMatchesReferenceOnTiles) {
+  const auto rows = testing::kernel_test_rows(2 * RF_INTEGRATE_INTERLEAVE + 3);
+  const auto reference = integrate_rows_reference(rows, IntegrationOptions{3}, 0, rows.height);
+  expect_tiles_match(
+      RF_INTEGRATE_INTERLEAVE, [&](int begin, int end) { return integrate_top(rows, 3, begin, end); }, reference,
+      rows.height);
+}
+
 TEST(HlsCsim, FusionTopMatchesReferenceOnTiles) {
-  const auto rows = testing::kernel_test_rows();
+  const auto rows = testing::kernel_test_rows(2 * RF_FUSE_INTERLEAVE + 3);
   const FusionOptions options;
   const auto start = integrate_rows_reference(rows, IntegrationOptions{3}, 0, rows.height);
   const auto reference = fuse_rows_reference(rows, start, options, 0, rows.height);
-  auto z = fuse_top(rows, start, options, 0, 3);
-  const auto rest = fuse_top(rows, start, options, 3, rows.height);
-  z.insert(z.end(), rest.begin(), rest.end());
-  expect_close(z, reference);
+  expect_tiles_match(
+      RF_FUSE_INTERLEAVE, [&](int begin, int end) { return fuse_top(rows, start, options, begin, end); }, reference,
+      rows.height);
 }
 
 TEST(HlsCsim, SelfcheckTopMatchesReference) {
@@ -89,24 +125,28 @@ TEST(HlsCsim, SelfcheckTopMatchesReference) {
 namespace rfrecon::transport {
 namespace {
 
-// The transport accumulator on the HLS tops, its buffers host vectors, the dot frames batched RF_FRAME_BATCH at a
-// time as the device accumulator batches them.
+// The transport accumulator on the HLS tops, its buffers host vectors, the Gray pairs batched RF_GRAY_PAIR_BATCH and
+// the dot frames RF_FRAME_BATCH at a time in one batch buffer, as the device accumulator batches them.
 class HlsAccumulator final : public TransportAccumulator {
  public:
   explicit HlsAccumulator(TransportSetup setup) {
     setup.thresholds = resolve_thresholds(setup.thresholds, 8);
     t_ = make_empty_transport(setup);
     n_ = static_cast<unsigned>(t_.camera_pixels());
-    batch_.resize(static_cast<std::size_t>(RF_FRAME_BATCH) * n_);
+    batch_.resize(static_cast<std::size_t>(std::max(RF_FRAME_BATCH, 2 * RF_GRAY_PAIR_BATCH)) * n_);
   }
 
   void add_gray_pair(GrayAxis axis, int bit, const cv::Mat& pattern, const cv::Mat& inverse) override {
-    gray_pair_single(pattern.ptr<float>(), inverse.ptr<float>(), gray_bit_mask(t_.setup, axis, bit),
-                     t_.setup.thresholds.white, (axis == GrayAxis::kColumns ? t_.gray_x : t_.gray_y).data(),
-                     t_.flags.data(), n_);
+    const auto frame = batch_.begin() + static_cast<std::ptrdiff_t>(2 * gray_pending_ * n_);
+    std::copy_n(pattern.ptr<float>(), n_, frame);
+    std::copy_n(inverse.ptr<float>(), n_, frame + n_);
+    pairs_[2 * gray_pending_] = gray_bit_mask(t_.setup, axis, bit);
+    pairs_[2 * gray_pending_ + 1] = axis == GrayAxis::kColumns ? 0 : 1;
+    if (++gray_pending_ == RF_GRAY_PAIR_BATCH) decode_batch();
   }
 
   void finish_gray(const cv::Mat& white, const cv::Mat& black) override {
+    if (gray_pending_ > 0) decode_batch();
     white_ = white;
     black_ = black;
     gray_finalize_single(white.ptr<float>(), black.ptr<float>(), t_.setup.thresholds.black,
@@ -131,6 +171,13 @@ class HlsAccumulator final : public TransportAccumulator {
   }
 
  private:
+  void decode_batch() {
+    gray_pairs_single(batch_.data(), static_cast<int>(gray_pending_), pairs_.data(), t_.setup.thresholds.white,
+                      t_.gray_x.data(), t_.gray_y.data(), t_.flags.data(), n_);
+    gray_pending_ = 0;
+    pairs_.fill(0);
+  }
+
   void compress_batch() {
     dot_frames_single(batch_.data(), static_cast<int>(pending_), offsets_.data(), t_.setup.dot_spacing,
                       t_.setup.projector_size.width, t_.setup.projector_size.height, t_.setup.thresholds.noise,
@@ -144,6 +191,8 @@ class HlsAccumulator final : public TransportAccumulator {
   unsigned n_ = 0;
   cv::Mat white_, black_;
   std::vector<float> batch_;
+  unsigned gray_pending_ = 0;
+  std::array<unsigned, 2 * RF_GRAY_PAIR_BATCH> pairs_ = {};
   unsigned pending_ = 0;
   std::array<int, 2 * RF_FRAME_BATCH> offsets_ = {};
 };
@@ -161,6 +210,18 @@ TEST(HlsCsim, TransportTopsMatchReference) {
     HlsAccumulator tops(setup);
     testing::expect_same_transport(testing::feed_all(tops, capture.sequence, linear), expected);
   }
+}
+
+// Gray pairs over one full batch of RF_GRAY_PAIR_BATCH and a partial one: codes and flags bit for bit.
+TEST(HlsCsim, GrayPairsTopOverAFullAndAPartialBatchMatchesReference) {
+  const auto capture = testing::tiny_gray_capture_over_batches();
+  if (!capture) GTEST_SKIP() << "RF_GRAY_PAIR_BATCH " << RF_GRAY_PAIR_BATCH << " has no tiny partial batch";
+  const auto linear = testing::linearize(capture->frames);
+  const auto setup = testing::setup_for(linear, capture->scene.projector_size, 0, RF_K);
+  auto reference = make_reference_accumulator(setup);
+  const auto expected = testing::feed_all(*reference, capture->sequence, linear);
+  HlsAccumulator tops(setup);
+  testing::expect_same_transport(testing::feed_all(tops, capture->sequence, linear), expected);
 }
 
 // The products sum in the references' order: bit for bit.

@@ -1,22 +1,39 @@
 // In-memory feeding of capture frames for the transport tests, and their tiny capture.
 #include "tests/transport/test_capture_feed.h"
 
+#include <algorithm>
 #include <random>
 
 #include "host/capture/protocol.h"
+#include "kernels/transport/gray_decode.h"
 
 namespace rfrecon::transport::testing {
 
 using capture::PatternKind;
 
-TinyCapture tiny_capture(int dot_spacing) {
+namespace {
+
+TinyCapture tiny_capture_of(cv::Size projector_size, int dot_spacing) {
   SceneOptions options;
   options.camera_size = {24, 20};
-  options.projector_size = {16, 12};
+  options.projector_size = projector_size;
   TinyCapture capture{make_plane_scene(options), {}, {}};
   capture.sequence = capture::make_protocol({options.projector_size, dot_spacing});
   capture.frames = render_frames(capture.scene, capture.sequence, dot_spacing, 1.0, 7);
   return capture;
+}
+
+}  // namespace
+
+TinyCapture tiny_capture(int dot_spacing) { return tiny_capture_of({16, 12}, dot_spacing); }
+
+std::optional<TinyCapture> tiny_gray_capture_over_batches() {
+  constexpr int kBatch = RF_GRAY_PAIR_BATCH;
+  const int pairs = kBatch + std::min(2, kBatch - 1);
+  if (kBatch < 2 || pairs > 20) return std::nullopt;
+  // 3/4 of 2^b projector pixels take b Gray bits (gray_bits rounds log2 up).
+  const auto size_of = [](int bits) { return (1 << bits) - ((1 << bits) >> 2); };
+  return tiny_capture_of({size_of((pairs + 1) / 2), size_of(pairs / 2)}, 0);
 }
 
 CompressedTransport tiny_reference_transport(int dot_spacing, int k) {

@@ -2,6 +2,7 @@
 // the tiny capture the kernel tests feed.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "host/capture/manifest.h"
@@ -18,6 +19,12 @@ struct TinyCapture {
   std::vector<cv::Mat> frames;  // 8-bit
 };
 TinyCapture tiny_capture(int dot_spacing);
+
+// The tiny capture, Gray code only, with a projector sized for one full batch of RF_GRAY_PAIR_BATCH pattern/inverse
+// pairs and a partial one of 2 pairs (1 for a batch of 2), the columns' pairs then the rows' (so that batches of 3
+// or more mix both axes). None for a batch of 1 pair (every count fills whole batches) or beyond 20 pairs (the
+// projector would not be tiny).
+std::optional<TinyCapture> tiny_gray_capture_over_batches();
 
 // The tiny capture's compressed T as the C++ reference accumulator makes it, K entries per pixel.
 CompressedTransport tiny_reference_transport(int dot_spacing, int k);

@@ -13,6 +13,7 @@
 #include "host/transport/compute_transport.h"
 #include "host/transport/spmv.h"
 #include "kernels/transport/compression.h"
+#include "kernels/transport/gray_decode.h"
 #include "tests/transport/same_transport.h"
 #include "tests/transport/synthetic_capture.h"
 #include "tests/transport/test_capture_feed.h"
@@ -106,6 +107,37 @@ TEST_F(TransportKernelTest, GrayCodeOnlyGivesOneEntryPerRowLikeReference) {
     for (const auto entry : kEntries) {
       auto accumulator = make_device_accumulator(setup, device, programs_, entry);
       expect_same_transport(testing::feed_all(*accumulator, capture.sequence, linear), expected);
+    }
+  }
+}
+
+// Gray pairs are decoded RF_GRAY_PAIR_BATCH per launch: over one full batch and a partial one, the codes and flags
+// equal the reference's (one pair at a time) bit for bit, on both entries.
+TEST_F(TransportKernelTest, GrayPairsOverAFullAndAPartialBatchMatchReference) {
+  const auto capture = testing::tiny_gray_capture_over_batches();
+  if (!capture) GTEST_SKIP() << "RF_GRAY_PAIR_BATCH " << RF_GRAY_PAIR_BATCH << " has no tiny partial batch";
+  const auto pairs = std::count_if(capture->sequence.begin(), capture->sequence.end(), [](const auto& pattern) {
+    return pattern.kind != capture::PatternKind::kWhite && pattern.kind != capture::PatternKind::kBlack &&
+           !pattern.inverse;
+  });
+  ASSERT_GT(pairs, RF_GRAY_PAIR_BATCH);
+  ASSERT_NE(pairs % RF_GRAY_PAIR_BATCH, 0);
+  const auto linear = testing::linearize(capture->frames);
+  const auto setup = testing::setup_for(linear, capture->scene.projector_size, 0, 2);
+  auto reference = make_reference_accumulator(setup);
+  const auto expected = testing::feed_all(*reference, capture->sequence, linear);
+  std::size_t valid = 0;
+  for (const auto flags : expected.flags) valid += (flags & kFlagValid) != 0 ? 1 : 0;
+  ASSERT_GT(valid, 0u) << "the capture must decode some pixels";
+  for (auto& device : devices_) {
+    for (const auto entry : kEntries) {
+      SCOPED_TRACE(cl::describe(device.info()) + (entry == KernelEntry::kNdRange ? " ndrange" : " single"));
+      auto accumulator = make_device_accumulator(setup, device, programs_, entry);
+      const auto got = testing::feed_all(*accumulator, capture->sequence, linear);
+      EXPECT_EQ(got.gray_x, expected.gray_x);
+      EXPECT_EQ(got.gray_y, expected.gray_y);
+      EXPECT_EQ(got.flags, expected.flags);
+      expect_same_transport(got, expected);
     }
   }
 }
