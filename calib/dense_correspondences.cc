@@ -4,8 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include <opencv2/imgproc.hpp>
+
+#include "host/core/percentile.h"
 
 namespace rfrecon::calib {
 
@@ -29,16 +32,10 @@ DenseCorrespondences sample_dense_correspondences(const cv::Mat& white, const cv
   cv::erode(image, darkest, kernel);
   cv::dilate(image, brightest, kernel);
   // The board's white level: the 90th percentile inside the outline (about half of it is white squares).
-  std::vector<float> values;
-  for (int y = 0; y < image.rows; ++y) {
-    for (int x = 0; x < image.cols; ++x) {
-      if (inside.at<std::uint8_t>(y, x)) values.push_back(image.at<float>(y, x));
-    }
-  }
-  if (values.empty()) return dense;
-  const auto at90 = values.begin() + static_cast<std::ptrdiff_t>(0.9 * static_cast<double>(values.size() - 1));
-  std::nth_element(values.begin(), at90, values.end());
-  const float white_level = *at90;
+  cv::Mat on_board(image.size(), CV_32F, cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
+  image.copyTo(on_board, inside);
+  const float white_level = finite_percentile(on_board, 0.9);
+  if (std::isnan(white_level)) return dense;
 
   std::vector<cv::Point> candidates;
   for (int y = 0; y < image.rows; ++y) {
