@@ -122,10 +122,10 @@ Frame frame_from_json(const json& item, std::size_t index, const fs::path& file)
   return frame;
 }
 
-// Checks that the frames form a complete protocol for the projector size: one white, one black, every Gray code
-// bit of both axes with its inverse, and (with a dot grid) every offset once.
-void validate(const CaptureManifest& manifest, const fs::path& file) {
-  const auto fail = [&](const std::string& what) { throw InputError(file.string() + ": " + what); };
+}  // namespace
+
+void validate_manifest(const CaptureManifest& manifest, const std::string& where) {
+  const auto fail = [&](const std::string& what) { throw InputError(where + ": " + what); };
   if (manifest.projector_size.width < 2 || manifest.projector_size.height < 2) {
     fail("projector_size must be at least 2x2");
   }
@@ -139,7 +139,7 @@ void validate(const CaptureManifest& manifest, const fs::path& file) {
   if (manifest.dot_spacing < 0 || manifest.dot_spacing == 1 || manifest.dot_spacing > kMaxDotSpacing) {
     fail("dot_spacing must be 0 or 2 to " + std::to_string(kMaxDotSpacing));
   }
-  (void)response_gamma(manifest.camera_response, file.string());
+  (void)response_gamma(manifest.camera_response, where);
   std::map<PatternKind, int> plain_count;
   std::set<std::tuple<int, int, bool>> gray_seen;
   std::set<std::pair<int, int>> dots_seen;
@@ -191,6 +191,8 @@ void validate(const CaptureManifest& manifest, const fs::path& file) {
          std::to_string(manifest.dot_spacing * manifest.dot_spacing) + " frames");
   }
 }
+
+namespace {
 
 // Every frame is a regular file, and no file stands for two patterns.
 void check_frame_files(const CaptureManifest& manifest, const fs::path& dir, const fs::path& file) {
@@ -252,7 +254,7 @@ CaptureManifest read_manifest(const fs::path& capture_dir, FramePaths frame_path
     manifest.frames.push_back(frame_from_json(frames[i], i, file));
     check_frame_path(manifest.frames.back().file, capture_dir, frame_paths, "frames[" + std::to_string(i) + "].", file);
   }
-  validate(manifest, file);
+  validate_manifest(manifest, file.string());
   check_frame_files(manifest, capture_dir, file);
   return manifest;
 }

@@ -40,6 +40,11 @@ enum class FramePaths { kInsideCapture, kAnywhere };
 CaptureManifest read_manifest(const std::filesystem::path& capture_dir,
                               FramePaths frame_paths = FramePaths::kInsideCapture);
 
+// Checks that the frames form a complete protocol for the projector size (one white, one black, every Gray code bit
+// of both axes with its inverse, with a dot grid every offset once) and that the values are in range; throws
+// InputError starting with `where` (the manifest's file or the frame source's name). read_manifest calls it.
+void validate_manifest(const CaptureManifest& manifest, const std::string& where);
+
 // The files reading the capture touches: DIR/manifest.json (when there is one) and every frame. Outputs are checked
 // against them (host/core/output_path.h).
 std::vector<std::filesystem::path> capture_files(const std::filesystem::path& capture_dir,

@@ -2,6 +2,7 @@
 #include "host/cl/kernel_launch.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace rfrecon::cl {
 
@@ -41,6 +42,15 @@ namespace detail {
   cl_int status = CL_SUCCESS;
   ::cl::Buffer buffer(context, flags, bytes, const_cast<void*>(host), &status);
   RF_CL_CHECK_CODE(status, "clCreateBuffer");
+  return buffer;
+}
+
+::cl::Buffer borrow_bytes(const ::cl::Context& context, const void* data, std::size_t bytes) {
+  if (bytes == 0 || data == nullptr) throw std::invalid_argument("cl::borrow: an empty range");
+  cl_int status = CL_SUCCESS;
+  // The kernels only read it (CL_MEM_READ_ONLY), so the const_cast never leads to a write.
+  ::cl::Buffer buffer(context, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, bytes, const_cast<void*>(data), &status);
+  RF_CL_CHECK_CODE(status, "clCreateBuffer (CL_MEM_USE_HOST_PTR)");
   return buffer;
 }
 

@@ -45,6 +45,7 @@ namespace detail {
 void write_bytes(::cl::CommandQueue& queue, const ::cl::Buffer& buffer, const void* data, std::size_t bytes,
                  bool blocking, std::size_t offset_bytes);
 void read_bytes(::cl::CommandQueue& queue, const ::cl::Buffer& buffer, void* data, std::size_t bytes);
+::cl::Buffer borrow_bytes(const ::cl::Context& context, const void* data, std::size_t bytes);
 }  // namespace detail
 
 // A buffer of `count` elements of T (at least one), contents undefined.
@@ -64,6 +65,14 @@ template <typename T>
 template <typename T>
 ::cl::Buffer upload(const ::cl::Context& context, const std::vector<T>& host, cl_mem_flags flags = CL_MEM_READ_ONLY) {
   return upload(context, host.data(), host.size(), flags);
+}
+
+// A read-only buffer over the caller's data[0, count) (CL_MEM_USE_HOST_PTR, count > 0): CPU runtimes that run
+// kernels on host memory (PoCL) read it in place, without a copy; others copy it when a kernel needs it. Keep data
+// alive and unchanged until every command reading the buffer has run.
+template <typename T>
+::cl::Buffer borrow(const ::cl::Context& context, const T* data, std::size_t count) {
+  return detail::borrow_bytes(context, data, count * sizeof(T));
 }
 
 // Writes data[0, count) to buffer from element `offset` on; nothing for count 0. A non-blocking write reads data

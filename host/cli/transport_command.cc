@@ -67,6 +67,12 @@ void add_transport_command(CLI::App& app) {
                    "Transport entries at or below are dropped (default: 2.5 DN at the capture's bit depth)")
       ->check(finite_non_negative());
   add_entry_option(command, options->request.entries);
+  command->add_option("--readers", options->request.readers, "Threads reading frames ahead of the devices")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  command->add_option("--deflate", options->request.deflate_level, "zlib level of T.h5's datasets, 0 for none")
+      ->check(CLI::Range(0, 9))
+      ->capture_default_str();
   command->callback([options] { run_transport(*options); });
 }
 

@@ -3,10 +3,12 @@
 #include "host/depth/row_solvers.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "host/cl/kernel_launch.h"
 #include "host/core/errors.h"
@@ -69,34 +71,65 @@ std::size_t proj_offset(const RectifiedRows& rows, int row) {
   return static_cast<std::size_t>(row) * static_cast<std::size_t>(rows.proj_width);
 }
 
-// Device buffers of the inputs for rows [row_begin, row_end).
-struct RowBuffers {
-  ::cl::Buffer e_cam, e_proj, z_tri, runs;
+constexpr std::size_t kRowsPerWorkGroup = 8;  // NDRange entries: one row per work-item
 
-  RowBuffers(cl::DeviceContext& device, const RectifiedRows& rows, int row_begin, int row_end) {
-    const std::size_t pixels = offset(rows, row_end) - offset(rows, row_begin);
-    const std::size_t proj_pixels = proj_offset(rows, row_end) - proj_offset(rows, row_begin);
-    e_cam = cl::upload(device.context(), rows.e_cam.data() + offset(rows, row_begin), pixels);
-    e_proj = cl::upload(device.context(), rows.e_proj.data() + proj_offset(rows, row_begin), proj_pixels);
-    z_tri = cl::upload(device.context(), rows.z_tri.data() + offset(rows, row_begin), pixels);
-    runs = cl::upload(device.context(), rows.runs.data() + offset(rows, row_begin), pixels);
+// The rows a launch covers: on NDRange entries, [row_begin, row_end) padded with masked rows to whole work-groups,
+// since the integration's work-items advance in step (RF_ROWS_IN_STEP) and each must reach every barrier; on single
+// work-item entries the tile itself.
+struct LaunchRows {
+  std::size_t group = 1;  // work-group size (NDRange)
+  int count = 0;          // rows of the tile
+  int padded = 0;         // rows launched
+
+  LaunchRows(const cl::DeviceContext& device, KernelEntry entry, int row_begin, int row_end)
+      : count(row_end - row_begin), padded(count) {
+    if (entry != KernelEntry::kNdRange) return;
+    group = std::min<std::size_t>(kRowsPerWorkGroup, device.info().max_work_group_size);
+    const auto groups = (static_cast<std::size_t>(count) + group - 1) / group;
+    padded = static_cast<int>(groups * group);
   }
 };
 
-constexpr std::size_t kRowsPerWorkGroup = 8;  // NDRange entries: one row per work-item
+// A buffer of the tile's `count` elements of `data` followed by `padded - count` copies of `fill`.
+template <typename T>
+::cl::Buffer upload_padded(cl::DeviceContext& device, const T* data, std::size_t count, std::size_t padded, T fill) {
+  ::cl::Buffer buffer = cl::make_buffer<T>(device.context(), padded, CL_MEM_READ_WRITE);
+  cl::write_buffer(device.queue(), buffer, data, count);
+  const std::vector<T> padding(padded - count, fill);
+  cl::write_buffer(device.queue(), buffer, padding.data(), padding.size(), true, count);
+  return buffer;
+}
+
+// Device buffers of the inputs for rows [row_begin, row_end), padded with masked rows (zero signal, no depth).
+struct RowBuffers {
+  ::cl::Buffer e_cam, e_proj, z_tri, runs;
+
+  RowBuffers(cl::DeviceContext& device, const RectifiedRows& rows, int row_begin, const LaunchRows& launch) {
+    const int row_end = row_begin + launch.count;
+    const std::size_t pixels = offset(rows, row_end) - offset(rows, row_begin);
+    const std::size_t padded = static_cast<std::size_t>(launch.padded) * static_cast<std::size_t>(rows.width);
+    const std::size_t proj_pixels = proj_offset(rows, row_end) - proj_offset(rows, row_begin);
+    const std::size_t proj_padded = static_cast<std::size_t>(launch.padded) * static_cast<std::size_t>(rows.proj_width);
+    e_cam = upload_padded(device, rows.e_cam.data() + offset(rows, row_begin), pixels, padded, 0.0f);
+    e_proj = upload_padded(device, rows.e_proj.data() + proj_offset(rows, row_begin), proj_pixels, proj_padded, 0.0f);
+    z_tri = upload_padded(device, rows.z_tri.data() + offset(rows, row_begin), pixels, padded,
+                          std::numeric_limits<float>::quiet_NaN());
+    runs = upload_padded(device, rows.runs.data() + offset(rows, row_begin), pixels, padded,
+                         static_cast<std::uint8_t>(RF_RUN_MASKED));
+  }
+};
 
 // Sets the kernel's arguments: those both kernels share (geometry, tile, sizes), then `rest`, and runs it over the
-// rows, one work-item per row (kNdRange) or one in all.
+// launch's rows, one work-item per row in fixed work-groups (kNdRange) or one in all. A fixed work-group size: with
+// the runtime's choice, which follows the tile's row count, PoCL compiles the kernel again for every new size, on the
+// first run of each (docs/performance.md#program-cache).
 template <typename... Rest>
 void run_rows(cl::DeviceContext& device, ::cl::Kernel& kernel, KernelEntry entry, const RectifiedRows& rows,
-              int row_begin, int row_end, int count, const Rest&... rest) {
+              int row_begin, const LaunchRows& launch, int count, const Rest&... rest) {
   const RfRectifiedRig& rig = rows.rig;
-  cl::set_args(kernel, rig.f, rig.cx_cam, rig.cx_proj, rig.cy, rig.b, cl_int{row_begin}, cl_int{row_end - row_begin},
+  cl::set_args(kernel, rig.f, rig.cx_cam, rig.cx_proj, rig.cy, rig.b, cl_int{row_begin}, cl_int{launch.padded},
                cl_int{rows.width}, cl_int{rows.proj_width}, cl_int{count}, rest...);
-  // A fixed work-group size: with the runtime's choice, which follows the tile's row count, PoCL compiles the
-  // kernel again for every new size, on the first run of each (docs/performance.md#program-cache).
-  const std::size_t group = std::min<std::size_t>(kRowsPerWorkGroup, device.info().max_work_group_size);
-  cl::enqueue_kernel(device.queue(), kernel, entry, static_cast<std::size_t>(row_end - row_begin), {group});
+  cl::enqueue_kernel(device.queue(), kernel, entry, static_cast<std::size_t>(launch.padded), {launch.group});
 }
 
 }  // namespace
@@ -134,16 +167,18 @@ std::vector<float> integrate_rows_opencl(cl::DeviceContext& device, cl::ProgramC
   check_range(rows, row_begin, row_end);
   check_options(options);
   check_entry_width(rows, entry);
-  const RowBuffers inputs(device, rows, row_begin, row_end);
+  const LaunchRows launch(device, entry, row_begin, row_end);
+  const RowBuffers inputs(device, rows, row_begin, launch);
   // z also holds each run's seed between passes. It starts defined (NaN) because the compiler may load z and z_tri
   // both before choosing the seed of the first pass (oclgrind reports that load otherwise).
-  const std::vector<float> z(offset(rows, row_end) - offset(rows, row_begin), std::numeric_limits<float>::quiet_NaN());
+  const std::vector<float> z(static_cast<std::size_t>(launch.padded) * static_cast<std::size_t>(rows.width),
+                             std::numeric_limits<float>::quiet_NaN());
   const ::cl::Buffer z_buffer = cl::upload(device.context(), z, CL_MEM_READ_WRITE);
   ::cl::Kernel kernel =
       cl::make_kernel(programs.get(device, "depth/integrate.cl", build_options), "integrate_rows", entry);
-  run_rows(device, kernel, entry, rows, row_begin, row_end, options.passes, inputs.e_cam, inputs.e_proj, inputs.z_tri,
+  run_rows(device, kernel, entry, rows, row_begin, launch, options.passes, inputs.e_cam, inputs.e_proj, inputs.z_tri,
            inputs.runs, z_buffer);
-  return cl::download<float>(device.queue(), z_buffer, z.size());
+  return cl::download<float>(device.queue(), z_buffer, offset(rows, row_end) - offset(rows, row_begin));
 }
 
 std::vector<float> fuse_rows_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
@@ -152,19 +187,21 @@ std::vector<float> fuse_rows_opencl(cl::DeviceContext& device, cl::ProgramCache&
                                     std::string_view build_options) {
   std::vector<float> z = checked_fusion_start(rows, z_start, options, row_begin, row_end);
   check_entry_width(rows, entry);
-  const RowBuffers inputs(device, rows, row_begin, row_end);
-  const ::cl::Buffer z_buffer = cl::upload(device.context(), z, CL_MEM_READ_WRITE);
+  const LaunchRows launch(device, entry, row_begin, row_end);
+  const RowBuffers inputs(device, rows, row_begin, launch);
+  const std::size_t padded = static_cast<std::size_t>(launch.padded) * static_cast<std::size_t>(rows.width);
+  const ::cl::Buffer z_buffer = upload_padded(device, z.data(), z.size(), padded, 0.0f);
   ::cl::Kernel kernel = cl::make_kernel(programs.get(device, "depth/fuse.cl", build_options), "fuse_rows", entry);
   if (entry == KernelEntry::kSingleWorkItem) {  // its scratch is on chip
-    run_rows(device, kernel, entry, rows, row_begin, row_end, options.iterations, options.sigma_disparity_px,
+    run_rows(device, kernel, entry, rows, row_begin, launch, options.iterations, options.sigma_disparity_px,
              options.sigma_step_mm, inputs.e_cam, inputs.e_proj, inputs.z_tri, inputs.runs, z_buffer);
   } else {
     // Scratch of the Thomas sweeps, zeroed from the host: every element is written before it is read, but oclgrind
     // follows speculative loads and does not count clEnqueueFillBuffer as initialisation.
-    const std::vector<float> zeros(z.size(), 0.0f);
+    const std::vector<float> zeros(padded, 0.0f);
     const ::cl::Buffer c_buffer = cl::upload(device.context(), zeros, CL_MEM_READ_WRITE);
     const ::cl::Buffer d_buffer = cl::upload(device.context(), zeros, CL_MEM_READ_WRITE);
-    run_rows(device, kernel, entry, rows, row_begin, row_end, options.iterations, options.sigma_disparity_px,
+    run_rows(device, kernel, entry, rows, row_begin, launch, options.iterations, options.sigma_disparity_px,
              options.sigma_step_mm, inputs.e_cam, inputs.e_proj, inputs.z_tri, inputs.runs, z_buffer, c_buffer,
              d_buffer);
   }

@@ -33,7 +33,7 @@ TransportFileRun transport_capture(const TransportRequest& request, std::vector<
                    " camera with K = " + std::to_string(request.setup.entries_per_pixel));
   TransportFileRun file_run;
   file_run.run = transport::compute_transport_on_devices(request.capture_dir, manifest, request.setup, devices,
-                                                         programs, request.entries);
+                                                         programs, request.entries, request.readers);
   for (const auto flags : file_run.run.transport.flags) {
     file_run.decoded_pixels += (flags & transport::kFlagValid) != 0 ? 1 : 0;
   }
@@ -45,7 +45,8 @@ TransportFileRun transport_capture(const TransportRequest& request, std::vector<
   }
   AtomicFile t_file(request.output);
   StageClock clock;
-  clock.time("write T.h5", [&] { transport::write_transport(file_run.run.transport, t_file.temp_path()); });
+  clock.time("write T.h5",
+             [&] { transport::write_transport(file_run.run.transport, t_file.temp_path(), request.deflate_level); });
   file_run.run.timings.push_back(clock.timings().front());
   for (const auto& timing : file_run.run.timings) file_run.total_seconds += timing.seconds;
   std::optional<AtomicFile> summary_file;

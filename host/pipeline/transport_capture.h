@@ -7,17 +7,20 @@
 #include "host/cl/entry_choice.h"
 #include "host/transport/capture_views.h"
 #include "host/transport/compute_transport.h"
+#include "host/transport/transport_file.h"
 
 namespace rfrecon::pipeline {
 
 struct TransportRequest {
   std::filesystem::path capture_dir;
   transport::CaptureSource source;
-  transport::TransportSetup setup;  // K and thresholds
-  cl::EntryChoice entries;          // kernel entry per device (default auto: cl::preferred_entry of each)
-  std::filesystem::path output;     // T.h5, written atomically
-  std::filesystem::path summary;    // optional JSON of timings and shares
-  bool force = false;               // replace existing output and summary files
+  transport::TransportSetup setup;           // K and thresholds
+  cl::EntryChoice entries;                   // kernel entry per device (default auto: cl::preferred_entry of each)
+  int readers = transport::kDefaultReaders;  // threads reading frames ahead of the devices
+  int deflate_level = transport::kDefaultDeflateLevel;  // T.h5's zlib level, 0 for none
+  std::filesystem::path output;                         // T.h5, written atomically
+  std::filesystem::path summary;                        // optional JSON of timings and shares
+  bool force = false;                                   // replace existing output and summary files
 };
 
 struct TransportFileRun {

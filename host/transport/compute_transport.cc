@@ -1,12 +1,13 @@
 // Streaming of capture frames through the decode and compression accumulators, with progress and timings.
 #include "host/transport/compute_transport.h"
 
+#include <algorithm>
 #include <chrono>
-#include <future>
 #include <map>
 #include <optional>
 #include <utility>
 
+#include "host/capture/frame_read_ahead.h"
 #include "host/core/errors.h"
 #include "host/core/progress.h"
 #include "host/core/stage_clock.h"
@@ -37,7 +38,7 @@ struct FrameIndex {
   std::vector<std::size_t> dots;
 };
 
-// read_manifest / manifest_from_opencv_layout have checked that the protocol is complete.
+// capture::validate_manifest has checked that the protocol is complete.
 FrameIndex index_frames(const capture::CaptureManifest& manifest) {
   FrameIndex index;
   for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
@@ -125,8 +126,9 @@ struct OpenedCapture {
   TransportSetup setup;
 };
 
-OpenedCapture open_frames(const fs::path& capture_dir, capture::CaptureManifest manifest, TransportSetup setup,
+OpenedCapture open_frames(const capture::FrameSource& frames, capture::CaptureManifest manifest, TransportSetup setup,
                           const std::function<cv::Mat(const capture::CaptureManifest&, std::size_t)>& load) {
+  capture::validate_manifest(manifest, frames.name());  // a callback's manifest was never read from a file
   OpenedCapture opened;
   opened.index = index_frames(manifest);
   opened.white = load(manifest, opened.index.white);
@@ -135,9 +137,8 @@ OpenedCapture open_frames(const fs::path& capture_dir, capture::CaptureManifest 
   double brightest = 0.0;
   cv::minMaxLoc(opened.white - opened.black, nullptr, &brightest);
   if (brightest <= setup.thresholds.black) {
-    throw InputError("all-dark capture: no pixel of " +
-                     (capture_dir / manifest.frames[opened.index.white].file).string() + " is brighter than " +
-                     (capture_dir / manifest.frames[opened.index.black].file).string() + " by more than " +
+    throw InputError("all-dark capture: no pixel of " + frames.describe(manifest, opened.index.white) +
+                     " is brighter than " + frames.describe(manifest, opened.index.black) + " by more than " +
                      "the black threshold " + std::to_string(setup.thresholds.black) + " (maximum difference " +
                      std::to_string(brightest) + ")");
   }
@@ -173,9 +174,9 @@ class SubpixelGray {
 // The transport stage's side of the block runner: one device accumulator per camera row block.
 class TransportBlocks final : public sched::BlockTask {
  public:
-  TransportBlocks(const fs::path& capture_dir, const OpenedCapture& capture, const std::vector<Step>& steps,
+  TransportBlocks(const capture::FrameSource& source, const OpenedCapture& capture, const std::vector<Step>& steps,
                   const std::vector<sched::Tile>& blocks, cl::ProgramCache& programs)
-      : capture_dir_(capture_dir),
+      : source_(source),
         capture_(capture),
         steps_(steps),
         blocks_(blocks),
@@ -207,14 +208,14 @@ class TransportBlocks final : public sched::BlockTask {
     }
     std::vector<cv::Mat> frames;
     for (std::size_t i = 0; i < step.frames.size(); ++i) {
-      frames.push_back(
-          rows(replay ? capture::load_frame(capture_dir_, capture_.manifest, step.frames[i]) : frames_[i], block));
+      frames.push_back(rows(replay ? source_.load(capture_.manifest, step.frames[i]) : frames_[i], block));
     }
     apply(*accumulator, step, frames, rows(capture_.white, block), rows(capture_.black, block));
   }
 
-  // The blocks' transports stacked into the whole camera image.
-  CompressedTransport assemble() const {
+  // The blocks' transports stacked into the whole camera image (moved out, once).
+  CompressedTransport assemble() {
+    if (blocks_.size() == 1) return std::move(results_.front());  // the whole image: nothing to stack
     CompressedTransport whole = make_empty_transport(capture_.setup);
     const auto width = static_cast<std::size_t>(capture_.setup.camera_size.width);
     const auto k = static_cast<std::size_t>(capture_.setup.entries_per_pixel);
@@ -238,7 +239,7 @@ class TransportBlocks final : public sched::BlockTask {
     return frame.rowRange(static_cast<int>(blocks_[block].begin), static_cast<int>(blocks_[block].end));
   }
 
-  const fs::path& capture_dir_;
+  const capture::FrameSource& source_;
   const OpenedCapture& capture_;
   const std::vector<Step>& steps_;
   const std::vector<sched::Tile>& blocks_;
@@ -250,16 +251,16 @@ class TransportBlocks final : public sched::BlockTask {
 
 }  // namespace
 
-TransportRun compute_transport(const fs::path& capture_dir, capture::CaptureManifest manifest, TransportSetup setup,
-                               const AccumulatorFactory& make_accumulator) {
+TransportRun compute_transport(const capture::FrameSource& frames, capture::CaptureManifest manifest,
+                               TransportSetup setup, const AccumulatorFactory& make_accumulator) {
   StageClock clock;
   Progress progress("transport", manifest.frames.size(), "frames");
   const auto load = [&](const capture::CaptureManifest& with_size, std::size_t i) {
-    cv::Mat frame = clock.time("read frames", [&] { return capture::load_frame(capture_dir, with_size, i); });
+    cv::Mat frame = clock.time("read frames", [&] { return frames.load(with_size, i); });
     progress.advance();
     return frame;
   };
-  const OpenedCapture capture = open_frames(capture_dir, std::move(manifest), setup, load);
+  const OpenedCapture capture = open_frames(frames, std::move(manifest), setup, load);
   auto accumulator = clock.time("setup", [&] { return make_accumulator(capture.setup); });
   SubpixelGray subpixel(capture.setup, clock);
   TransportRun run;
@@ -268,19 +269,20 @@ TransportRun compute_transport(const fs::path& capture_dir, capture::CaptureMani
       run.transport = clock.time(step.stage(), [&] { return accumulator->finish(); });
       break;
     }
-    std::vector<cv::Mat> frames;
-    for (const std::size_t i : step.frames) frames.push_back(load(capture.manifest, i));
-    clock.time(step.stage(), [&] { apply(*accumulator, step, frames, capture.white, capture.black); });
-    subpixel.add(step, frames);
+    std::vector<cv::Mat> step_frames;
+    for (const std::size_t i : step.frames) step_frames.push_back(load(capture.manifest, i));
+    clock.time(step.stage(), [&] { apply(*accumulator, step, step_frames, capture.white, capture.black); });
+    subpixel.add(step, step_frames);
   }
   subpixel.refine(run.transport);
   run.timings = clock.timings();
   return run;
 }
 
-TransportRun compute_transport_on_devices(const fs::path& capture_dir, capture::CaptureManifest manifest,
+TransportRun compute_transport_on_devices(const capture::FrameSource& frames, capture::CaptureManifest manifest,
                                           TransportSetup setup, std::vector<cl::DeviceContext>& devices,
-                                          cl::ProgramCache& programs, const cl::EntryChoice& entries) {
+                                          cl::ProgramCache& programs, const cl::EntryChoice& entries, int readers) {
+  if (readers < 1) throw UsageError("transport: --readers must be at least 1");
   entries.check_device_count(devices.size());
   StageClock clock;
   clock.time("build programs", [&] {
@@ -289,11 +291,9 @@ TransportRun compute_transport_on_devices(const fs::path& capture_dir, capture::
         {{"transport/decode.cl", ""}, {"transport/compress.cl", transport_build_options(setup.entries_per_pixel)}});
   });
   Progress progress("transport", manifest.frames.size(), "frames");
-  const auto load = [&](const capture::CaptureManifest& with_size, std::size_t i) {
-    return capture::load_frame(capture_dir, with_size, i);
-  };
+  const auto load = [&](const capture::CaptureManifest& with_size, std::size_t i) { return frames.load(with_size, i); };
   const OpenedCapture capture = clock.time("read frames", [&] {
-    auto opened = open_frames(capture_dir, std::move(manifest), setup, load);
+    auto opened = open_frames(frames, std::move(manifest), setup, load);
     progress.advance(2);
     return opened;
   });
@@ -301,28 +301,23 @@ TransportRun compute_transport_on_devices(const fs::path& capture_dir, capture::
   const auto rows = static_cast<std::size_t>(capture.setup.camera_size.height);
   const std::vector<sched::Tile> blocks =
       sched::split_rows(rows, devices.size() == 1 ? 1 : kBlocksPerDevice * devices.size());
-  TransportBlocks task(capture_dir, capture, steps, blocks, programs);
+  TransportBlocks task(frames, capture, steps, blocks, programs);
   sched::BlockOptions options;
   options.items_per_row = static_cast<std::size_t>(capture.setup.camera_size.width);
   options.entries = entries;
   sched::BlockRunner runner(devices, blocks, task, options);
 
-  // Frames of step i + 1 are read on another thread while the devices work on step i.
-  const auto read_step = [&](std::size_t i) {
-    std::vector<cv::Mat> frames;
-    if (i < steps.size()) {
-      for (const std::size_t frame : steps[i].frames) frames.push_back(load(capture.manifest, frame));
-    }
-    return frames;
-  };
+  // The frames of the next steps are read on `readers` threads while the devices work on the current one.
+  std::vector<std::vector<std::size_t>> groups(steps.size());
+  std::transform(steps.begin(), steps.end(), groups.begin(), [](const Step& step) { return step.frames; });
+  capture::FrameReadAhead read_ahead(frames, capture.manifest, std::move(groups), readers,
+                                     2 * static_cast<std::size_t>(readers));
   SubpixelGray subpixel(capture.setup, clock);
-  auto next = std::async(std::launch::async, read_step, 0);
   for (std::size_t i = 0; i < steps.size(); ++i) {
-    std::vector<cv::Mat> frames = clock.time("read frames", [&] { return next.get(); });
+    std::vector<cv::Mat> step_frames = clock.time("read frames", [&] { return read_ahead.take(i); });
     progress.advance(steps[i].frames.size());
-    next = std::async(std::launch::async, read_step, i + 1);
-    subpixel.add(steps[i], frames);
-    task.set_frames(std::move(frames));
+    subpixel.add(steps[i], step_frames);
+    task.set_frames(std::move(step_frames));
     clock.time(steps[i].stage(), [&] { runner.run_step(i, steps[i].stage()); });
   }
   TransportRun run;

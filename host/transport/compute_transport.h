@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "host/capture/frame_source.h"
 #include "host/capture/manifest.h"
 #include "host/cl/entry_choice.h"
 #include "host/core/stage_clock.h"
@@ -35,22 +36,29 @@ using AccumulatorFactory = std::function<std::unique_ptr<TransportAccumulator>(c
 // Reads the frames one at a time (white, black, Gray pairs, dot frames: at most two in memory besides white and
 // black) and feeds them to the accumulator made for the capture's setup. `setup` gives K and the thresholds; sizes
 // and dot spacing come from the manifest (camera size from the first frame when the manifest has none).
-// Throws InputError naming the file for a missing, unreadable or mismatched frame, and for an all-dark capture.
-TransportRun compute_transport(const std::filesystem::path& capture_dir, capture::CaptureManifest manifest,
+// Throws InputError naming the file (or the source and frame) for a missing, unreadable or mismatched frame, for a
+// manifest that is not a complete protocol (capture::validate_manifest), and for an all-dark capture.
+TransportRun compute_transport(const capture::FrameSource& frames, capture::CaptureManifest manifest,
                                TransportSetup setup, const AccumulatorFactory& make_accumulator);
+
+// Threads reading frames ahead of the devices by default (each keeps two steps' frames in flight): measured on two
+// cores in docs/performance.md.
+inline constexpr int kDefaultReaders = 2;
 
 // Camera row blocks per device when several devices share the transport stage (one block on a single device).
 inline constexpr int kBlocksPerDevice = 4;
 
 // The same stage on every device of `devices` (host/sched/block_runner.h): camera rows cut into blocks, each block's
-// per-pixel state on the device that first took it, every frame read once and fed to all blocks. The next frames
-// are read while the devices work on the current ones. When a device fails, its blocks are rebuilt on the others
-// by re-reading the earlier frames; only when all fail does it throw (sched::AllDevicesFailed). The kernels are
+// per-pixel state on the device that first took it, every frame read once and fed to all blocks. `readers` threads
+// read the frames of the next 2 x readers steps (capture::FrameReadAhead) while the devices work on the current
+// one. When a device fails, its blocks are rebuilt on the others by re-reading the earlier frames from `frames`;
+// only when all fail does it throw (sched::AllDevicesFailed). The kernels are
 // per pixel, so with one entry on every device the result equals the single-device result bit for bit. `entries`
 // gives each device its kernel entry (auto: cl::preferred_entry); a per-device list of the wrong length throws
 // UsageError before any frame is read.
-TransportRun compute_transport_on_devices(const std::filesystem::path& capture_dir, capture::CaptureManifest manifest,
+TransportRun compute_transport_on_devices(const capture::FrameSource& frames, capture::CaptureManifest manifest,
                                           TransportSetup setup, std::vector<cl::DeviceContext>& devices,
-                                          cl::ProgramCache& programs, const cl::EntryChoice& entries = {});
+                                          cl::ProgramCache& programs, const cl::EntryChoice& entries = {},
+                                          int readers = kDefaultReaders);
 
 }  // namespace rfrecon::transport

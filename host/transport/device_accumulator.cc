@@ -33,8 +33,9 @@ class DeviceAccumulator final : public TransportAccumulator {
 
     const std::size_t slots = n_ * static_cast<std::size_t>(setup.entries_per_pixel);
     const ::cl::Context& context = device.context();
-    // Dot frames, or Gray pairs (each pair's two frames): only as many frames as a launch takes.
-    const std::size_t batch_frames = std::max(setup.dot_spacing > 0 ? kBatch : 0, 2 * gray_batch_);
+    // Dot frames, or on single work-item entries Gray pairs (each pair's two frames): as many frames as a launch takes.
+    const std::size_t gray_frames = entry == KernelEntry::kSingleWorkItem ? 2 * gray_batch_ : 0;
+    const std::size_t batch_frames = std::max<std::size_t>(setup.dot_spacing > 0 ? kBatch : 0, gray_frames);
     batch_ = cl::make_buffer<float>(context, batch_frames * n_);
     if (entry_ == KernelEntry::kSingleWorkItem) pairs_buffer_ = cl::make_buffer<cl_uint>(context, pairs_.size());
     white_ = cl::make_buffer<float>(context, n_);
@@ -52,14 +53,16 @@ class DeviceAccumulator final : public TransportAccumulator {
 
   void add_gray_pair(GrayAxis axis, int bit, const cv::Mat& pattern, const cv::Mat& inverse) override {
     const cl_uint mask = gray_bit_mask(setup_, axis, bit);
-    upload(batch_, pattern, 2 * gray_pending_ * n_);
-    upload(batch_, inverse, (2 * gray_pending_ + 1) * n_);
-    if (entry_ != KernelEntry::kSingleWorkItem) {  // this pair alone, into its axis' code word
-      cl::set_args(gray_pairs_, batch_, mask, setup_.thresholds.white, axis == GrayAxis::kColumns ? gray_x_ : gray_y_,
-                   flags_, count());
-      run(gray_pairs_);
+    if (entry_ != KernelEntry::kSingleWorkItem) {  // this pair alone, read where it lies, into its axis' code word
+      const ::cl::Buffer pattern_buffer = borrow(pattern);  // kernel arguments do not hold their buffers
+      const ::cl::Buffer inverse_buffer = borrow(inverse);
+      cl::set_args(gray_pairs_, pattern_buffer, inverse_buffer, mask, setup_.thresholds.white,
+                   axis == GrayAxis::kColumns ? gray_x_ : gray_y_, flags_, count());
+      run(gray_pairs_);  // waits: the frames may go once it returns
       return;
     }
+    upload(batch_, pattern, 2 * gray_pending_ * n_);
+    upload(batch_, inverse, (2 * gray_pending_ + 1) * n_);
     pairs_[2 * gray_pending_] = mask;
     pairs_[2 * gray_pending_ + 1] = axis == GrayAxis::kColumns ? 0 : 1;
     if (++gray_pending_ == gray_batch_) decode_batch();
@@ -109,11 +112,21 @@ class DeviceAccumulator final : public TransportAccumulator {
     return cl::upload(device_.context(), std::vector<T>(elements, value), CL_MEM_READ_WRITE);
   }
 
-  void upload(const ::cl::Buffer& buffer, const cv::Mat& frame, std::size_t offset = 0) {
+  void check_frame(const cv::Mat& frame) const {
     if (frame.type() != CV_32FC1 || frame.size() != setup_.camera_size || !frame.isContinuous()) {
       throw std::invalid_argument("transport: frames must be continuous CV_32FC1 of the camera size");
     }
+  }
+
+  void upload(const ::cl::Buffer& buffer, const cv::Mat& frame, std::size_t offset = 0) {
+    check_frame(frame);
     cl::write_buffer(device_.queue(), buffer, frame.ptr<float>(), n_, true, offset);
+  }
+
+  // The frame's own memory as a buffer: no copy on runtimes that run kernels on host memory (cl::borrow).
+  ::cl::Buffer borrow(const cv::Mat& frame) const {
+    check_frame(frame);
+    return cl::borrow(device_.context(), frame.ptr<float>(), n_);
   }
 
   // One single work-item launch over the pending Gray pairs; unused slots stay 0 (the kernel skips those pairs).

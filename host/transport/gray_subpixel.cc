@@ -152,20 +152,23 @@ void GraySubpixel::add_gray_pair(GrayAxis axis, const cv::Mat& pattern, const cv
   const int width = camera_size_.width;
   // pattern - inverse relative to pattern + inverse: the pixels' reflectances cancel from the crossing position.
   const auto contrast = [&](std::size_t c) { return (p[c] - inv[c]) / std::max(p[c] + inv[c], 1e-6f); };
-  for (int direction = 0; direction < 2; ++direction) {
-    const std::size_t step = direction == 0 ? 1 : static_cast<std::size_t>(width);
-    for (int y = 0; y < camera_size_.height - direction; ++y) {
-      for (int x = 0; x < width - (1 - direction); ++x) {
-        const std::size_t c = static_cast<std::size_t>(y) * width + x;
-        const std::size_t next = c + step;
-        // The decoders' bit: set where pattern > inverse.
-        if ((p[c] > inv[c]) == (p[next] > inv[next])) continue;
-        const float d0 = contrast(c);
-        const float d1 = contrast(next);
-        crossing[direction][c] = d0 / (d0 - d1);
+  // Rows in parallel: each pixel's crossings are its own.
+  cv::parallel_for_(cv::Range(0, camera_size_.height), [&](const cv::Range& rows) {
+    for (int direction = 0; direction < 2; ++direction) {
+      const std::size_t step = direction == 0 ? 1 : static_cast<std::size_t>(width);
+      for (int y = rows.start; y < std::min(rows.end, camera_size_.height - direction); ++y) {
+        for (int x = 0; x < width - (1 - direction); ++x) {
+          const std::size_t c = static_cast<std::size_t>(y) * width + x;
+          const std::size_t next = c + step;
+          // The decoders' bit: set where pattern > inverse.
+          if ((p[c] > inv[c]) == (p[next] > inv[next])) continue;
+          const float d0 = contrast(c);
+          const float d1 = contrast(next);
+          crossing[direction][c] = d0 / (d0 - d1);
+        }
       }
     }
-  }
+  });
 }
 
 void GraySubpixel::refine(CompressedTransport& transport) const {
@@ -173,30 +176,35 @@ void GraySubpixel::refine(CompressedTransport& transport) const {
     throw std::invalid_argument("gray subpixel: transport and frames differ in camera size");
   }
   const int width = camera_size_.width;
-  std::vector<BoundaryPoint> points;
   for (int axis = 0; axis < 2; ++axis) {
     const auto& code = axis == 0 ? transport.gray_x : transport.gray_y;
     const Window window{usable_boundaries(crossing_[axis], code, transport.flags, camera_size_), crossing_[axis],
                         camera_size_, options_};
-    for (int y = 0; y < camera_size_.height; ++y) {
-      for (int x = 0; x < width; ++x) {
-        const std::size_t c = static_cast<std::size_t>(y) * width + x;
-        float& out = transport.correspondence[2 * c + axis];
-        if ((transport.flags[c] & kFlagValid) == 0 || std::isnan(out)) continue;
-        out = static_cast<float>(code[c]);  // exact, where the accumulators' centroid may be off by an ulp
-        window.gather(x, y, code[c], points);
-        std::optional<Plane> plane = fit_plane(points, options_);
-        if (!plane) continue;
-        // Once more without the points the first plane does not explain.
-        points.erase(std::remove_if(points.begin(), points.end(),
-                                    [&](const BoundaryPoint& p) {
-                                      return std::fabs(plane->at(p.dx, p.dy) - p.value) > options_.max_residual_px;
-                                    }),
-                     points.end());
-        plane = fit_plane(points, options_);
-        if (plane && std::fabs(plane->a - code[c]) <= options_.max_code_offset_px) out = static_cast<float>(plane->a);
+    // Rows in parallel: each pixel's fit reads the boundaries and writes only its own correspondence.
+    cv::parallel_for_(cv::Range(0, camera_size_.height), [&](const cv::Range& rows) {
+      std::vector<BoundaryPoint> points;
+      for (int y = rows.start; y < rows.end; ++y) {
+        for (int x = 0; x < width; ++x) {
+          const std::size_t c = static_cast<std::size_t>(y) * width + x;
+          float& out = transport.correspondence[2 * c + axis];
+          if ((transport.flags[c] & kFlagValid) == 0 || std::isnan(out)) continue;
+          out = static_cast<float>(code[c]);  // exact, where the accumulators' centroid may be off by an ulp
+          window.gather(x, y, code[c], points);
+          std::optional<Plane> plane = fit_plane(points, options_);
+          if (!plane) continue;
+          // Once more without the points the first plane does not explain.
+          points.erase(std::remove_if(points.begin(), points.end(),
+                                      [&](const BoundaryPoint& p) {
+                                        return std::fabs(plane->at(p.dx, p.dy) - p.value) > options_.max_residual_px;
+                                      }),
+                       points.end());
+          plane = fit_plane(points, options_);
+          if (plane && std::fabs(plane->a - code[c]) <= options_.max_code_offset_px) {
+            out = static_cast<float>(plane->a);
+          }
+        }
       }
-    }
+    });
   }
 }
 

@@ -129,7 +129,8 @@ bool allowed_flags(std::uint8_t flags) {
 }
 
 template <typename T>
-void write_dataset(H5::H5File& file, const char* name, const std::vector<hsize_t>& shape, const std::vector<T>& data) {
+void write_dataset(H5::H5File& file, const char* name, const std::vector<hsize_t>& shape, const std::vector<T>& data,
+                   int deflate_level) {
   if (data.size() != element_count(shape)) {
     throw std::logic_error(std::string("write_transport: '") + name + "' holds " + std::to_string(data.size()) +
                            " values, its shape " + describe(shape) + " needs " + std::to_string(element_count(shape)));
@@ -139,7 +140,7 @@ void write_dataset(H5::H5File& file, const char* name, const std::vector<hsize_t
   std::vector<hsize_t> chunk = shape;
   chunk[0] = std::min(shape[0], kRowsPerChunk);
   properties.setChunk(static_cast<int>(chunk.size()), chunk.data());
-  properties.setDeflate(1);
+  if (deflate_level > 0) properties.setDeflate(deflate_level);
   properties.setFletcher32();  // after deflate: checks the stored bytes before they are inflated
   H5::DataSet dataset = file.createDataSet(name, h5_type<T>(), space, properties);
   dataset.write(data.data(), h5_type<T>());
@@ -484,7 +485,10 @@ void check_values(const Reader& reader, const CompressedTransport& transport, co
 
 }  // namespace
 
-void write_transport(const CompressedTransport& transport, const fs::path& file) {
+void write_transport(const CompressedTransport& transport, const fs::path& file, int deflate_level) {
+  if (deflate_level < 0 || deflate_level > 9) {
+    throw std::invalid_argument("write_transport: deflate level " + std::to_string(deflate_level) + " is not 0 to 9");
+  }
   const TransportSetup& setup = transport.setup;
   H5::Exception::dontPrint();
   try {
@@ -506,17 +510,17 @@ void write_transport(const CompressedTransport& transport, const fs::path& file)
     write_attribute(h5, "white_threshold", double{setup.thresholds.white});
     write_attribute(h5, "noise_threshold", double{setup.thresholds.noise});
     const Shapes shapes(setup);
-    write_dataset(h5, "indices", shapes.entries, transport.indices);
-    write_dataset(h5, "weights", shapes.entries, transport.weights);
-    write_dataset(h5, "correspondence", shapes.pairs, transport.correspondence);
+    write_dataset(h5, "indices", shapes.entries, transport.indices, deflate_level);
+    write_dataset(h5, "weights", shapes.entries, transport.weights, deflate_level);
+    write_dataset(h5, "correspondence", shapes.pairs, transport.correspondence, deflate_level);
     std::vector<std::uint32_t> decoded(2 * transport.camera_pixels());
     for (std::size_t c = 0; c < transport.camera_pixels(); ++c) {
       decoded[2 * c] = transport.gray_x[c];
       decoded[2 * c + 1] = transport.gray_y[c];
     }
-    write_dataset(h5, "decoded", shapes.pairs, decoded);
-    write_dataset(h5, "flags", shapes.pixels, transport.flags);
-    write_dataset(h5, "direct_energy", shapes.pixels, transport.direct_energy);
+    write_dataset(h5, "decoded", shapes.pairs, decoded, deflate_level);
+    write_dataset(h5, "flags", shapes.pixels, transport.flags, deflate_level);
+    write_dataset(h5, "direct_energy", shapes.pixels, transport.direct_energy, deflate_level);
     h5.close();
     output.write(memory.bytes());
     output.commit();

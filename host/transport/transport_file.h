@@ -20,9 +20,14 @@ inline constexpr int kMaxEntriesPerPixel = 64;        // K, as `rfrecon transpor
 // Camera pixels x K: entries are addressed by int32 (the dual's CSR offsets).
 inline constexpr std::int64_t kMaxTransportEntries = std::numeric_limits<std::int32_t>::max();
 
-// Writes `transport` to `file` through a temporary (AtomicFile): a failed write leaves no file. Throws OutputError
-// naming the file when it cannot be written (its directory cannot be created, the disk is full).
-void write_transport(const CompressedTransport& transport, const std::filesystem::path& file);
+// zlib level of T.h5's datasets by default: measured in docs/performance.md. 0 stores them uncompressed.
+inline constexpr int kDefaultDeflateLevel = 1;
+
+// Writes `transport` to `file` through a temporary (AtomicFile): a failed write leaves no file. `deflate_level` (0 to
+// 9) is zlib's level for every dataset, 0 for none. Throws OutputError naming the file when it cannot be written
+// (its directory cannot be created, the disk is full).
+void write_transport(const CompressedTransport& transport, const std::filesystem::path& file,
+                     int deflate_level = kDefaultDeflateLevel);
 
 // Reads a T.h5: either returns a transport that passes every check of docs/formats.md or throws InputError naming
 // the file and the attribute or dataset at fault (and its first bad element): missing, truncated, failing a

@@ -52,6 +52,7 @@ RF_INLINE void rf_integrate_row(RfRectifiedRig rig, float beta, int width, int p
     for (int u = 0; u < width; ++u) {
       rf_integrate_pixel(rig, beta, u, proj_width, pass, passes, e_cam_row, e_proj_row, z_tri_row, run_row, z_row,
                          &state);
+      RF_ROWS_IN_STEP();
     }
     rf_close_run(&state, z_row, pass + 1 < passes);
   }

@@ -1,6 +1,6 @@
 // Gray code decoding (bodies in transport/gray_decode.h).
-//   gray_pairs_ndrange: one pattern/inverse pair per launch (CPUs and GPUs decode a pair while its two frames, at 0
-//                       and n in `frames`, are still in their caches), into its axis' code word `code`.
+//   gray_pairs_ndrange: one pattern/inverse pair per launch (CPUs and GPUs decode a pair while its two frames are
+//                       still in their caches; the host passes the frames' own memory), into its axis' code word.
 //   gray_pairs_single:  a batch of up to RF_GRAY_PAIR_BATCH pairs per launch (pair p's pattern at 2p * n, its inverse
 //                       at (2p + 1) * n; `pairs` holds RF_GRAY_PAIR_BATCH (bit mask, axis) pairs, axis 0: columns,
 //                       code_x; 1: rows, code_y), each pixel's state read and written once per batch (FPGA boards).
@@ -8,14 +8,14 @@
 #include "common/target.h"
 #include "transport/gray_decode.h"
 
-__kernel void gray_pairs_ndrange(__global const float* restrict frames, uint bit_mask, float white_threshold,
-                                 __global uint* restrict code, __global uchar* restrict flags, uint n) {
+__kernel void gray_pairs_ndrange(__global const float* restrict pattern, __global const float* restrict inverse,
+                                 uint bit_mask, float white_threshold, __global uint* restrict code,
+                                 __global uchar* restrict flags, uint n) {
   const uint c = get_global_id(0);
   if (c >= n) return;
-  const float pattern = frames[c], inverse = frames[n + c];
-  const uint bit = rf_gray_pair_bit(pattern, inverse, bit_mask);
+  const uint bit = rf_gray_pair_bit(pattern[c], inverse[c], bit_mask);
   if (bit) code[c] |= bit;
-  const uchar flag = rf_gray_pair_flag(pattern, inverse, white_threshold);
+  const uchar flag = rf_gray_pair_flag(pattern[c], inverse[c], white_threshold);
   if (flag) flags[c] |= flag;
 }
 

@@ -137,6 +137,33 @@ TEST_F(TransportFileTest, EveryDatasetCarriesAChecksum) {
   }
 }
 
+// --deflate 0: the same arrays, every dataset still checksummed, none deflated; a level outside zlib's is a bug.
+TEST_F(TransportFileTest, UncompressedFilesRoundTripWithChecksums) {
+  const auto written = small_transport();
+  write_transport(written, file_, 0);
+  const auto read = read_transport(file_);
+  EXPECT_TRUE(same_bits(read.indices, written.indices));
+  EXPECT_TRUE(same_bits(read.weights, written.weights));
+  EXPECT_TRUE(same_bits(read.correspondence, written.correspondence));
+  EXPECT_TRUE(same_bits(read.direct_energy, written.direct_energy));
+  {
+    H5::H5File h5(file_.string(), H5F_ACC_RDONLY);
+    for (const char* name : {"indices", "weights", "correspondence", "decoded", "flags", "direct_energy"}) {
+      const H5::DSetCreatPropList properties = h5.openDataSet(name).getCreatePlist();
+      unsigned flags = 0;
+      unsigned config = 0;
+      std::size_t value_count = 0;
+      EXPECT_NO_THROW(properties.getFilterById(H5Z_FILTER_FLETCHER32, flags, value_count, nullptr, 0, nullptr, config))
+          << name;
+      EXPECT_THROW(properties.getFilterById(H5Z_FILTER_DEFLATE, flags, value_count, nullptr, 0, nullptr, config),
+                   H5::Exception)
+          << name;
+    }
+  }
+  EXPECT_THROW(write_transport(written, dir_.path() / "other.h5", 10), std::invalid_argument);
+  EXPECT_FALSE(fs::exists(dir_.path() / "other.h5"));
+}
+
 // Format version 1: the same layout without checksums (contiguous datasets here).
 TEST_F(TransportFileTest, VersionOneFilesWithoutChecksumsStillRead) {
   const auto written = small_transport();

@@ -2,6 +2,7 @@
 // and the streaming pipeline against the all-at-once reference. Tiny sizes: CI reruns these under oclgrind.
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -155,6 +156,48 @@ TEST_F(TransportKernelTest, StreamingFromDiskEqualsAllFramesInMemory) {
     return make_device_accumulator(s, device, programs_, KernelEntry::kNdRange);
   });
   expect_same_transport(run.transport, expected);
+}
+
+// A camera SDK's frames through a callback, read ahead by one or by three threads, give the files' transport bit for
+// bit; no reader is a usage error.
+TEST_F(TransportKernelTest, FramesFromACallbackOnAnyReaderCountEqualFramesFromFiles) {
+  const auto capture = tiny_capture(3);
+  testing::TempDir dir("callback_frames");
+  const auto manifest = testing::write_capture(dir.path(), capture.scene, capture.sequence, 3, capture.frames);
+  const auto setup = testing::setup_for(testing::linearize(capture.frames), capture.scene.projector_size, 3, 4);
+  const auto from_files =
+      compute_transport_on_devices(dir.path(), manifest, setup, devices_, programs_, KernelEntry::kNdRange, 1);
+  std::vector<std::size_t> asked;
+  const auto camera = capture::FrameSource::from_callback(
+      [&](std::size_t i) {
+        asked.push_back(i);
+        return capture.frames.at(i);
+      },
+      "camera SDK");
+  for (const int readers : {1, 3}) {
+    asked.clear();
+    const auto from_camera =
+        compute_transport_on_devices(camera, manifest, setup, devices_, programs_, KernelEntry::kNdRange, readers);
+    expect_same_transport(from_camera.transport, from_files.transport);
+    if (readers == 1) {  // one reader asks in the order of consumption, which is the standard protocol's order
+      std::vector<std::size_t> in_order(manifest.frames.size());
+      std::iota(in_order.begin(), in_order.end(), std::size_t{0});
+      EXPECT_EQ(asked, in_order);
+    }
+    std::sort(asked.begin(), asked.end());
+    EXPECT_EQ(asked.size(), manifest.frames.size()) << "every frame asked for once, readers " << readers;
+    EXPECT_TRUE(std::adjacent_find(asked.begin(), asked.end()) == asked.end());
+  }
+  EXPECT_THROW(compute_transport_on_devices(camera, manifest, setup, devices_, programs_, KernelEntry::kNdRange, 0),
+               UsageError);
+  auto incomplete = manifest;  // a manifest built in a program is checked as one read from a file
+  incomplete.frames.pop_back();
+  try {
+    (void)compute_transport_on_devices(camera, incomplete, setup, devices_, programs_, KernelEntry::kNdRange);
+    ADD_FAILURE() << "an incomplete protocol was accepted";
+  } catch (const InputError& error) {
+    EXPECT_THAT(error.what(), ::testing::HasSubstr("camera SDK: incomplete dot grid"));
+  }
 }
 
 // Gray-code-only captures: the sub-pixel correspondences are computed on the host from the same frames on both
