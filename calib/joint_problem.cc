@@ -57,7 +57,23 @@ JointProblem::JointProblem(const std::vector<std::vector<cv::Point3f>>& object_p
   for (const auto& view : object_points) object_points_.emplace_back(view.begin(), view.end());
 }
 
+std::vector<cv::Point2d> JointProblem::dense_rays(const std::vector<double>& p, int view) const {
+  const StereoCorners& observed = corners_[view];
+  std::vector<cv::Point2d> rays;
+  if (observed.dense_camera.empty()) return rays;
+  // In double: the Jacobian's differences are far below float's resolution.
+  const std::vector<cv::Point2d> camera_points(observed.dense_camera.begin(), observed.dense_camera.end());
+  cv::undistortPoints(camera_points, rays, device_matrix(p, 0), device_dist(p, 0, layout_.dist_size), cv::noArray(),
+                      cv::noArray(), undistort_criteria());
+  return rays;
+}
+
 void JointProblem::view_residuals(const std::vector<double>& p, int view, std::vector<double>& out) const {
+  view_residuals(p, view, dense_rays(p, view), out);
+}
+
+void JointProblem::view_residuals(const std::vector<double>& p, int view, const std::vector<cv::Point2d>& rays,
+                                  std::vector<double>& out) const {
   const int pose = layout_.pose(view);
   const cv::Vec3d rvec(p[pose], p[pose + 1], p[pose + 2]);
   const cv::Vec3d tvec(p[pose + 3], p[pose + 4], p[pose + 5]);
@@ -85,12 +101,8 @@ void JointProblem::view_residuals(const std::vector<double>& p, int view, std::v
   append(projector_px, observed.projector);
   if (observed.dense_camera.empty()) return;
 
-  // Each dense camera pixel's ray (in double: the Jacobian's differences are far below float's resolution) meets the
-  // board's plane z = 0 at a board point, which the projector sees like a corner.
-  std::vector<cv::Point2d> camera_points(observed.dense_camera.begin(), observed.dense_camera.end());
-  std::vector<cv::Point2d> rays;
-  cv::undistortPoints(camera_points, rays, device_matrix(p, 0), camera_dist, cv::noArray(), cv::noArray(),
-                      undistort_criteria());
+  // Each dense camera pixel's ray meets the board's plane z = 0 at a board point, which the projector sees like a
+  // corner.
   const cv::Vec3d normal(cam_from_board(0, 2), cam_from_board(1, 2), cam_from_board(2, 2));
   const double distance = normal.dot(tvec);
   std::vector<cv::Point3d> board_points;
@@ -120,13 +132,23 @@ cv::Mat JointProblem::view_jacobian(const std::vector<double>& p, int view, cons
   std::vector<double> q = p;
   std::vector<double> plus;
   std::vector<double> minus;
+  // The dense rays change with the camera block only (its first device_block() entries): the other columns reuse
+  // those at p instead of undistorting every dense pixel twice each.
+  const std::vector<cv::Point2d> rays_at_p = dense_rays(p, view);
+  const auto residuals_at = [&](int k, std::vector<double>& out) {
+    if (k < layout_.device_block()) {
+      view_residuals(q, view, out);
+    } else {
+      view_residuals(q, view, rays_at_p, out);
+    }
+  };
   cv::Mat j;
   for (std::size_t c = 0; c < index.size(); ++c) {
     const int k = index[c];
     q[k] = p[k] + step[c];
-    view_residuals(q, view, plus);
+    residuals_at(k, plus);
     q[k] = p[k] - step[c];
-    view_residuals(q, view, minus);
+    residuals_at(k, minus);
     q[k] = p[k];
     if (j.empty()) j = cv::Mat::zeros(static_cast<int>(plus.size()), static_cast<int>(index.size()), CV_64F);
     for (std::size_t r = 0; r < plus.size(); ++r) {

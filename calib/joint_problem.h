@@ -69,6 +69,13 @@ class JointProblem {
   double adjust(std::vector<double>& p, const JointColumns& columns) const;
 
  private:
+  // The rays (undistorted normalised coordinates) of view `view`'s dense camera pixels under p's camera intrinsics and
+  // distortion; empty without dense correspondences. Only the camera block of p changes them.
+  std::vector<cv::Point2d> dense_rays(const std::vector<double>& p, int view) const;
+  // view_residuals with those rays given.
+  void view_residuals(const std::vector<double>& p, int view, const std::vector<cv::Point2d>& rays,
+                      std::vector<double>& out) const;
+
   std::vector<std::vector<cv::Point3d>> object_points_;  // double, so projectPoints works in double
   const std::vector<StereoCorners>& corners_;
   JointLayout layout_;

@@ -8,17 +8,15 @@
 #include <pthread.h>
 
 #include "host/cl/error.h"
-#include "kernels/common/params.h"
+#include "kernels/depth/row_buffers.h"
 
 namespace rfrecon::cl {
 
 namespace {
 
 // The largest private arrays of a kernel: the single work-item depth entries' interleaved rows (on-chip memory on a
-// board; kernels/depth/row_interleave.h): 4 float rows and a byte row for the integration, 6 and 1 for the fusion.
-constexpr std::size_t kKernelPrivateBytes = std::max(std::size_t{RF_INTEGRATE_INTERLEAVE} * (4 * sizeof(float) + 1),
-                                                     std::size_t{RF_FUSE_INTERLEAVE} * (6 * sizeof(float) + 1)) *
-                                            std::size_t{RF_MAX_ROW_WIDTH};
+// board).
+constexpr std::size_t kKernelPrivateBytes = std::max<std::size_t>(RF_INTEGRATE_PRIVATE_BYTES, RF_FUSE_PRIVATE_BYTES);
 
 // CPU runtimes (PoCL) run a kernel's private arrays on their worker threads' stacks, which glibc sizes like the main
 // thread's (8 MB by default), and create those threads when the platforms are first queried. Threads created from

@@ -14,6 +14,7 @@
 
 #include "common/params.h"
 #include "common/target.h"
+#include "depth/row_buffers.h"
 #include "depth/row_fusion.h"
 #include "depth/row_integration.h"
 
@@ -69,7 +70,6 @@ RF_INLINE void rf_store_row_group(int group, int width, const float* z_rows, RF_
 // rf_integrate_row: each iteration evaluates one slope of one row's RK4 step (rf_rk4_stage), the last slope also
 // finishes the row's pixel (rf_integrate_pixel_step). The slopes of a step into a run's first pixel, or into a masked
 // one, are evaluated and not used, so that every iteration does the same work.
-#define RF_INTEGRATE_BUFFER (RF_INTEGRATE_INTERLEAVE * RF_MAX_ROW_WIDTH)
 RF_INLINE void rf_integrate_rows_interleaved(RfRectifiedRig rig, int first_row, int rows, int width, int proj_width,
                                              int passes, RF_GLOBAL const float* e_cam, RF_GLOBAL const float* e_proj,
                                              RF_GLOBAL const float* z_tri, RF_GLOBAL const unsigned char* runs,
@@ -128,7 +128,6 @@ RF_INLINE void rf_integrate_rows_interleaved(RfRectifiedRig rig, int first_row, 
 
 // Fusion of the tile's rows (layout of kernels/depth/fuse.cl; z holds the start on entry and the result on return),
 // the same arithmetic per row as rf_fuse_row, its scratch on chip.
-#define RF_FUSE_BUFFER (RF_FUSE_INTERLEAVE * RF_MAX_ROW_WIDTH)
 RF_INLINE void rf_fuse_rows_interleaved(RfRectifiedRig rig, int first_row, int rows, int width, int proj_width,
                                         int iterations, float sigma_disparity_px, float sigma_step_mm,
                                         RF_GLOBAL const float* e_cam, RF_GLOBAL const float* e_proj,

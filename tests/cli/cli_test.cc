@@ -72,6 +72,7 @@ TEST(CliTest, CommandLineMistakesAreExitCode2) {
         "reconstruct T.h5 --calib rig.yaml --epipolar-tolerance inf -o /tmp/rfrecon-cli-out",
         "transport /tmp -o /tmp/rfrecon-cli-T.h5 --tile-timeout 1",
         "transport /tmp -o /tmp/rfrecon-cli-T.h5 --devices ,", "transport /tmp -o /tmp/rfrecon-cli-T.h5 --entry fast",
+        "transport /tmp -o /tmp/rfrecon-cli-T.h5 --readers 0", "transport /tmp -o /tmp/rfrecon-cli-T.h5 --deflate 10",
         "reconstruct T.h5 --calib rig.yaml --entry single,,ndrange -o /tmp/rfrecon-cli-out"}) {
     const auto result = run_cli(arguments);
     EXPECT_EQ(result.exit_code, kExitUsage) << arguments << "\n" << result.output;
