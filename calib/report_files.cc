@@ -1,4 +1,4 @@
-// Report charts and report.json of a calibration.
+// Report charts, report.json and corners.json of a calibration.
 #include "calib/report_files.h"
 
 #include <opencv2/calib3d.hpp>
@@ -84,6 +84,21 @@ json stereo_report_json(const StereoCalibration& calibration) {
           {"warnings", calibration.warnings}};
 }
 
+json corners_json(const std::vector<StereoView>& views) {
+  const auto points = [](const std::vector<cv::Point2f>& corners) {
+    json out = json::array();
+    for (const auto& p : corners) out.push_back({p.x, p.y});
+    return out;
+  };
+  json out = json::array();
+  for (const auto& view : views) {
+    out.push_back({{"name", view.name},
+                   {"camera_px", points(view.camera_corners)},
+                   {"projector_px", points(view.projector_corners)}});
+  }
+  return {{"views", out}};
+}
+
 void write_camera_report(const fs::path& dir, const CameraCalibration& calibration,
                          const std::vector<BoardView>& views) {
   std::vector<std::vector<cv::Point2f>> corners;
@@ -109,6 +124,7 @@ void write_stereo_report(const fs::path& dir, const StereoCalibration& calibrati
   write_image(dir / "coverage_projector.png", draw_coverage_map(corners_of(views, true), calibration.rig.board,
                                                                 calibration.rig.projector_size, "projector"));
   write_file_atomically(dir / "report.json", stereo_report_json(calibration).dump(2) + "\n");
+  write_file_atomically(dir / "corners.json", corners_json(views).dump(1) + "\n");
 }
 
 }  // namespace rfrecon::calib

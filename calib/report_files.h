@@ -1,5 +1,6 @@
 // The files of a calibration report beside the corner images: the per-view error chart, residual plots and coverage
-// maps per device (PNG) and report.json (per-view errors, standard deviations, pose-set checks and warnings).
+// maps per device (PNG), report.json (per-view errors, standard deviations, pose-set checks and warnings) and
+// corners.json (the corners found in each view, docs/formats.md).
 #pragma once
 
 #include <filesystem>
@@ -14,12 +15,14 @@ namespace rfrecon::calib {
 
 nlohmann::json camera_report_json(const CameraCalibration& calibration);
 nlohmann::json stereo_report_json(const StereoCalibration& calibration);
+nlohmann::json corners_json(const std::vector<StereoView>& views);
 
 // errors.png, residuals_camera.png, coverage_camera.png and report.json, into `dir`.
 void write_camera_report(const std::filesystem::path& dir, const CameraCalibration& calibration,
                          const std::vector<BoardView>& views);
 
-// errors.png, residuals_{camera,projector}.png, coverage_{camera,projector}.png and report.json, into `dir`.
+// errors.png, residuals_{camera,projector}.png, coverage_{camera,projector}.png, report.json and corners.json,
+// into `dir`.
 void write_stereo_report(const std::filesystem::path& dir, const StereoCalibration& calibration,
                          const std::vector<StereoView>& views);
 

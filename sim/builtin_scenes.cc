@@ -79,25 +79,26 @@ json plane_lambert() {
   return scene;
 }
 
-// A 10 x 7-square board (9 x 6 inner corners, 30 mm squares) at 16 poses as docs/calibration.md asks of a user:
+// A 15 x 10-square board (14 x 9 inner corners, 20 mm squares: 126 corners, where a 9 x 6 board of 30 mm squares
+// over about the same area has 54) at 16 poses as docs/calibration.md asks of a user:
 // tilted by 29 to 45 degrees from the camera's line of sight about different axes (normals spanning 89 degrees), at
-// 530 to 720 mm, placed so that the printed patterns cover 75% of the camera image and all of the projector's (chosen
-// by a search over random poses that keeps every board inside both images of the default and side-by-side rigs).
+// 530 to 720 mm, placed so that the printed patterns cover 67% of the camera image and 98% of the projector's (in
+// calibrate's coverage grid; the poses were chosen by a search over random poses that keeps every board inside both
+// images of the default and side-by-side rigs).
 // Seen by a camera and a projector with mild lens distortion and an off-centre projector principal point, as a real
 // calibration would face. The capture includes the dot grid, so the dual images T^T 1 are built from full transport
-// rows (as in dual photography), not from Gray code alone. Rays are jittered in their cells: a regular grid of rays
-// would put the square edges on a 1/4 px lattice and bias the corners by up to 0.07 px.
+// rows (as in dual photography), not from Gray code alone. Each ray carries the board's albedo averaged over its
+// cell (sim/objects.h), as a sensor integrates it: point samples would alias the square edges to the rays' lattice.
 json checkerboard_poses() {
   json scene = lab_rig({{"name", "checkerboard-poses"}});
   scene["radiometry"] = {{"intensity", 8.0e5}};
   scene["capture"] = {{"dot_spacing", 8}};
-  scene["render"] = {{"jitter", true}};
   scene["objects"] = {{{"name", "board"},
                        {"shape", "plane"},
                        {"size", {360.0, 270.0}},
                        {"pose", {{"position", {0.0, 0.0, 600.0}}}},
                        {"material", {{"brdf", "lambert"}, {"diffuse", 0.8}}},
-                       {"checkerboard", {{"squares", {10, 7}}, {"square_size", 30.0}}}}};
+                       {"checkerboard", {{"squares", {15, 10}}, {"square_size", 20.0}}}}};
   // x, y, z (mm), then rotation about x, y, z (degrees).
   const double poses[16][6] = {{9, -24, 534, -14, -24, 1},   {0, 75, 652, -43, 5, -6},     {22, -63, 537, -30, -3, 3},
                                {-60, -18, 591, -8, -40, 7},  {46, 5, 567, 13, 34, 1},      {66, -34, 672, -8, 33, -5},
@@ -112,14 +113,13 @@ json checkerboard_poses() {
   return scene;
 }
 
-// The calibration board alone at a pose none of checkerboard-poses has, for flatness and scale checks of a rig.
+// A coarser board (10 x 7 squares of 30 mm, on the calibration board's plate) alone at a pose none of
+// checkerboard-poses has, for flatness and scale checks of a rig: its wide squares leave most pixels away from edges.
 json board_plane() {
   json scene = checkerboard_poses();
   scene["name"] = "board-plane";
   scene.erase("views");
-  // Rays at their cells' centres, as in the other depth scenes: jittered rays add pixel-scale texture to T (each
-  // ray's footprint box is of fixed size), which halves the board's coverage and doubles its flatness error.
-  scene.erase("render");
+  scene["objects"][0]["checkerboard"] = {{"squares", {10, 7}}, {"square_size", 30.0}};
   scene["objects"][0]["pose"] = {{"position", {15.0, 5.0, 620.0}}, {"rotation_deg", {15.0, -20.0, 5.0}}};
   return scene;
 }
@@ -137,8 +137,9 @@ const BuiltinScene kBuiltins[] = {
     {"cylinder-brushed", "40 mm radius cylinder, brushed along its axis (Ashikhmin-Shirley); wall behind",
      cylinder_brushed},
     {"plane-lambert", "Lambertian plane at 600 mm tilted 20 degrees", plane_lambert},
-    {"checkerboard-poses", "9x6-corner checkerboard (30 mm squares) at 16 poses, for calibration", checkerboard_poses},
-    {"board-plane", "the checkerboard at one pose not among checkerboard-poses, for flatness and scale", board_plane},
+    {"checkerboard-poses", "14x9-corner checkerboard (20 mm squares) at 16 poses, for calibration", checkerboard_poses},
+    {"board-plane", "a 9x6-corner checkerboard (30 mm squares) at a pose not among checkerboard-poses, for flatness",
+     board_plane},
 };
 
 // The built-in scene names, comma-separated, for messages.

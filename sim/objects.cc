@@ -183,6 +183,18 @@ int build_node(TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& centroids
   mesh.nodes[index].right = right;
   return index;
 }
+
+// Integral over [0, t] of the square wave that is +1 on [2k, 2k + 1) and -1 on [2k + 1, 2k + 2): a triangle wave.
+double square_wave_integral(double t) { return 1.0 - std::abs(t - 2.0 * std::floor(t / 2.0) - 1.0); }
+
+// The square wave's integral over [lo, hi] clipped to the board's [0, squares] (0 when nothing is left) and the
+// clipped length, in squares.
+std::pair<double, double> clipped_square_wave(double lo, double hi, int squares) {
+  lo = std::max(lo, 0.0);
+  hi = std::min(hi, static_cast<double>(squares));
+  if (hi <= lo) return {0.0, 0.0};
+  return {square_wave_integral(hi) - square_wave_integral(lo), hi - lo};
+}
 }  // namespace
 
 const char* to_string(ShapeKind kind) {
@@ -255,6 +267,28 @@ std::optional<Hit> intersect(const Object& object, const Ray& ray, double min_di
     }
   }
   return out;
+}
+
+double footprint_diffuse(const Object& object, const Hit& hit, const Eigen::Vector3d& du, const Eigen::Vector3d& dv) {
+  if (!object.checkerboard) return hit.diffuse;
+  const Checkerboard& board = *object.checkerboard;
+  const Eigen::Isometry3d object_from_world = object.world_from_object.inverse();
+  const Eigen::Vector3d centre = object_from_world * hit.position / board.square_size;
+  const Eigen::Vector3d u = object_from_world.linear() * du / board.square_size;
+  const Eigen::Vector3d v = object_from_world.linear() * dv / board.square_size;
+  const double half_x = 0.5 * (std::abs(u.x()) + std::abs(v.x()));
+  const double half_y = 0.5 * (std::abs(u.y()) + std::abs(v.y()));
+  if (!(half_x > 0.0 && half_y > 0.0)) return hit.diffuse;
+  // In squares from the board's corner, the albedo is mean - contrast * s(x) s(y) (dark where both are alike).
+  const double x = centre.x() + board.squares_x / 2.0;
+  const double y = centre.y() + board.squares_y / 2.0;
+  const auto [integral_x, length_x] = clipped_square_wave(x - half_x, x + half_x, board.squares_x);
+  const auto [integral_y, length_y] = clipped_square_wave(y - half_y, y + half_y, board.squares_y);
+  const double area = 4.0 * half_x * half_y;
+  const double on_board = length_x * length_y;
+  const double mean = 0.5 * (board.dark_albedo + board.light_albedo);
+  const double contrast = 0.5 * (board.light_albedo - board.dark_albedo);
+  return (mean * on_board - contrast * integral_x * integral_y + object.material.diffuse * (area - on_board)) / area;
 }
 
 std::shared_ptr<const TriangleMesh> load_mesh(const std::string& file, double scale, const std::string& field) {

@@ -78,6 +78,12 @@ struct Hit {
 // Nearest intersection with distance in (min_distance, max_distance), if any.
 std::optional<Hit> intersect(const Object& object, const Ray& ray, double min_distance, double max_distance);
 
+// The diffuse albedo that a camera pixel integrates around `hit` on `object`: for a checkerboard, the board's albedo
+// averaged exactly over the box in the board's plane that bounds the footprint with edge vectors `du`, `dv` (world
+// frame, mm), centred on the hit (squares, and the material outside the board, by their area in the box), so edges
+// come out as a sensor sees them, without the aliasing of point samples; other objects keep hit.diffuse.
+double footprint_diffuse(const Object& object, const Hit& hit, const Eigen::Vector3d& du, const Eigen::Vector3d& dv);
+
 // Loads a PLY/OBJ/... triangle mesh with assimp (all meshes of the file, triangulated, vertices scaled by `scale`).
 // Throws InputError naming `field` and the file when it cannot be read or holds no triangles.
 std::shared_ptr<const TriangleMesh> load_mesh(const std::string& file, double scale, const std::string& field);

@@ -1,5 +1,6 @@
 // Ray-traced transport: per camera pixel, N x N sub-pixel rays; each hit point lit by the projector deposits its
-// reflected reading on the projector pixels under its footprint; optional defocus and one-bounce interreflection.
+// reflected reading (texture averaged over the ray's cell) on the projector pixels under its footprint; optional
+// defocus and one-bounce interreflection.
 #include "sim/render.h"
 
 #include <algorithm>
@@ -204,26 +205,39 @@ class RowRenderer {
     if (!hit) return;
     const double weight = 1.0 / (n_ * n_);
     const Eigen::Vector3d w_c = -direction;
-    if (const auto light = light_at(scene_, tracer_, *hit)) {
-      const double reading = light->irradiance * brdf_at(scene_, *hit, light->w_p, w_c) * weight;
-      if (reading > 0.0) deposit_box(row, scene_.projector.size, light->projector_px, footprint(xy, *hit), reading);
+    const CellEdges edges = cell_edges(xy, *hit);
+    Hit cell = *hit;
+    cell.diffuse = footprint_diffuse(scene_.objects[hit->object], *hit, edges.du, edges.dv);
+    if (const auto light = light_at(scene_, tracer_, cell)) {
+      const double reading = light->irradiance * brdf_at(scene_, cell, light->w_p, w_c) * weight;
+      if (reading > 0.0) deposit_box(row, scene_.projector.size, light->projector_px, footprint(edges, cell), reading);
     }
     if (options_.interreflection_samples > 0) interreflect(*hit, w_c, rng, weight, row);
   }
 
-  // Half extents, in projector pixels, of the box bounding the projector-image footprint of one sub-pixel cell:
-  // the neighbouring sub-pixel rays are intersected with the tangent plane at the hit and projected.
-  Eigen::Vector2d footprint(const Eigen::Vector2d& xy, const Hit& hit) const {
-    const Eigen::Vector2d centre =
-        project_device_point(scene_.projector, scene_.projector.device_from_world * hit.position);
+  // One sub-pixel cell's footprint on the tangent plane at its hit (world frame, mm): the neighbouring sub-pixel
+  // rays intersected with that plane, less the hit.
+  struct CellEdges {
+    Eigen::Vector3d du, dv;
+  };
+  CellEdges cell_edges(const Eigen::Vector2d& xy, const Hit& hit) const {
     const double plane = hit.normal.dot(hit.position);
-    const auto project_neighbour = [&](const Eigen::Vector2d& n_xy) {
+    const auto on_plane = [&](const Eigen::Vector2d& n_xy) {
       const Eigen::Vector3d ray(n_xy.x(), n_xy.y(), 1.0);
-      const Eigen::Vector3d X = ray * (plane / hit.normal.dot(ray));
-      return Eigen::Vector2d(project_device_point(scene_.projector, scene_.projector.device_from_world * X) - centre);
+      return Eigen::Vector3d(ray * (plane / hit.normal.dot(ray)) - hit.position);
     };
-    const Eigen::Vector2d du = project_neighbour(xy + Eigen::Vector2d(1.0 / (n_ * scene_.camera.fx), 0.0));
-    const Eigen::Vector2d dv = project_neighbour(xy + Eigen::Vector2d(0.0, 1.0 / (n_ * scene_.camera.fy)));
+    return {on_plane(xy + Eigen::Vector2d(1.0 / (n_ * scene_.camera.fx), 0.0)),
+            on_plane(xy + Eigen::Vector2d(0.0, 1.0 / (n_ * scene_.camera.fy)))};
+  }
+
+  // Half extents, in projector pixels, of the box bounding the projector-image footprint of one sub-pixel cell.
+  Eigen::Vector2d footprint(const CellEdges& edges, const Hit& hit) const {
+    const auto project = [&](const Eigen::Vector3d& X) {
+      return project_device_point(scene_.projector, scene_.projector.device_from_world * X);
+    };
+    const Eigen::Vector2d centre = project(hit.position);
+    const Eigen::Vector2d du = project(hit.position + edges.du) - centre;
+    const Eigen::Vector2d dv = project(hit.position + edges.dv) - centre;
     const Eigen::Vector2d half = 0.5 * (du.cwiseAbs() + dv.cwiseAbs());
     return half.allFinite() ? half : Eigen::Vector2d::Zero();
   }

@@ -54,7 +54,7 @@ DemoRun run_demo(const fs::path& out_dir, const std::string& rig, bool force, st
   render(kPosesScene, demo.rig, poses);
   RigCalibrationRequest calibration;
   calibration.pose_dirs = pose_dirs(poses);
-  calibration.board = {9, 6, 30.0};
+  calibration.board = {14, 9, 20.0};
   calibration.output = out_dir / "rig.yaml";
   calibration.report_dir = calib::default_report_dir(calibration.output);
   calibration.force = true;

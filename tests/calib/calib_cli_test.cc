@@ -32,15 +32,16 @@ class CalibrateCliTest : public ::testing::Test {
 
 TEST_F(CalibrateCliTest, TooFewPosesIsExit6WithoutRig) {
   const auto result =
-      run_cli("calibrate " + pose(0) + " " + pose(1) + " --board 9x6 --square 30 -o " + (out_ / "rig.yaml").string());
+      run_cli("calibrate " + pose(0) + " " + pose(1) + " --board 14x9 --square 20 -o " + (out_ / "rig.yaml").string());
   EXPECT_EQ(result.exit_code, kExitProcessing) << result.output;
   EXPECT_THAT(result.output, HasSubstr("at least 3 views"));
   EXPECT_FALSE(fs::exists(out_ / "rig.yaml"));
 }
 
+// A board larger than the printed one (14x9 inner corners) is found in no pose.
 TEST_F(CalibrateCliTest, BoardFoundNowhereIsExit6WithoutRig) {
-  const auto result = run_cli("calibrate " + pose(0) + " " + pose(1) + " " + pose(2) + " --board 7x5 --square 20 -o " +
-                              (out_ / "rig.yaml").string());
+  const auto result = run_cli("calibrate " + pose(0) + " " + pose(1) + " " + pose(2) +
+                              " --board 16x11 --square 20 -o " + (out_ / "rig.yaml").string());
   EXPECT_EQ(result.exit_code, kExitProcessing) << result.output;
   EXPECT_THAT(result.output, HasSubstr("board not found"));
   EXPECT_FALSE(fs::exists(out_ / "rig.yaml"));
@@ -51,7 +52,7 @@ TEST_F(CalibrateCliTest, MixedImageSizesIsExit3) {
   const fs::path small = out_ / "small.png";
   cv::imwrite(small.string(), cv::Mat(100, 120, CV_8U, cv::Scalar(90)));
   const auto result = run_cli("calibrate-camera " + pose(0) + "/000_white.png " + small.string() +
-                              " --board 9x6 --square 30 -o " + (out_ / "camera.yaml").string());
+                              " --board 14x9 --square 20 -o " + (out_ / "camera.yaml").string());
   EXPECT_EQ(result.exit_code, kExitInput) << result.output;
   EXPECT_THAT(result.output, HasSubstr(small.string()));
   EXPECT_FALSE(fs::exists(out_ / "camera.yaml"));
@@ -61,8 +62,8 @@ TEST_F(CalibrateCliTest, UnreadableImageIsExit3) {
   fs::create_directories(out_);
   const fs::path broken = out_ / "broken.png";
   std::ofstream(broken) << "not an image";
-  const auto result =
-      run_cli("calibrate-camera " + broken.string() + " --board 9x6 --square 30 -o " + (out_ / "camera.yaml").string());
+  const auto result = run_cli("calibrate-camera " + broken.string() + " --board 14x9 --square 20 -o " +
+                              (out_ / "camera.yaml").string());
   EXPECT_EQ(result.exit_code, kExitInput) << result.output;
   EXPECT_THAT(result.output, HasSubstr(broken.string()));
   EXPECT_FALSE(fs::exists(out_ / "camera.yaml"));
@@ -77,7 +78,7 @@ TEST_F(CalibrateCliTest, SquareBoardIsRejected) {
 
 TEST_F(CalibrateCliTest, UnknownDistortionModelIsExit2) {
   const auto result =
-      run_cli("calibrate-camera " + pose(0) + "/000_white.png --board 9x6 --square 30 --distortion k4 -o " +
+      run_cli("calibrate-camera " + pose(0) + "/000_white.png --board 14x9 --square 20 --distortion k4 -o " +
               (out_ / "camera.yaml").string());
   EXPECT_EQ(result.exit_code, kExitUsage) << result.output;
   EXPECT_THAT(result.output, HasSubstr("k4"));
@@ -89,7 +90,7 @@ TEST_F(CalibrateCliTest, UnknownDistortionModelIsExit2) {
 TEST_F(CalibrateCliTest, RadialModelWithFewPosesWarnsAndHoldsTangentialAtZero) {
   std::string images;
   for (int i = 0; i < 6; ++i) images += pose(i) + "/000_white.png ";
-  const auto result = run_cli("calibrate-camera " + images + "--board 9x6 --square 30 --distortion radial -o " +
+  const auto result = run_cli("calibrate-camera " + images + "--board 14x9 --square 20 --distortion radial -o " +
                               (out_ / "camera.yaml").string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_THAT(result.output, HasSubstr("only 6 poses"));
@@ -121,6 +122,29 @@ TEST_F(CalibrateCliTest, EvaluateRigNeverWritesOverAnInput) {
   EXPECT_EQ(result.exit_code, kExitUsage) << result.output;
   EXPECT_THAT(result.output, HasSubstr("is also an input"));
   EXPECT_EQ(fs::file_size(rig), before);
+}
+
+// The corner comparison needs both files; a corners file that is not calibrate's, or a view the truth lacks, is an
+// input error naming the file.
+TEST_F(CalibrateCliTest, EvaluateRigCornerFilesAreChecked) {
+  fs::create_directories(out_);
+  const fs::path truth = kPoses.parent_path() / "truth";
+  const std::string rigs = (truth / "rig.yaml").string() + " --truth " + (truth / "rig.yaml").string();
+  const std::string board_poses = (truth / "board_poses.json").string();
+  auto result = run_cli("evaluate-rig " + rigs + " --board-poses " + board_poses);
+  EXPECT_EQ(result.exit_code, kExitUsage) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("--corners and --board-poses go together"));
+
+  const fs::path corners = out_ / "corners.json";
+  std::ofstream(corners) << R"({"views": [{"name": "pose_99", "camera_px": [], "projector_px": []}]})";
+  result = run_cli("evaluate-rig " + rigs + " --corners " + corners.string() + " --board-poses " + board_poses);
+  EXPECT_EQ(result.exit_code, kExitInput) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("view 'pose_99' is not in"));
+
+  std::ofstream(corners) << R"({"views": [{"name": "pose_00", "camera_px": [[1, 2, 3]], "projector_px": []}]})";
+  result = run_cli("evaluate-rig " + rigs + " --corners " + corners.string() + " --board-poses " + board_poses);
+  EXPECT_EQ(result.exit_code, kExitInput) << result.output;
+  EXPECT_THAT(result.output, HasSubstr(corners.string() + ": camera_px must be an array of [x, y] points"));
 }
 
 }  // namespace

@@ -54,9 +54,9 @@ TEST_F(RigFileTest, RoundTripIsExact) {
   }
   EXPECT_EQ(back.rms, 0.123);
   EXPECT_EQ(back.per_view_errors, rig.per_view_errors);
-  EXPECT_EQ(back.board.cols, 9);
-  EXPECT_EQ(back.board.rows, 6);
-  EXPECT_EQ(back.board.square_size, 30.0);
+  EXPECT_EQ(back.board.cols, 14);
+  EXPECT_EQ(back.board.rows, 9);
+  EXPECT_EQ(back.board.square_size, 20.0);
 }
 
 TEST_F(RigFileTest, RectificationAlignsRowsAndEpipolarGeometryHolds) {
