@@ -47,6 +47,18 @@ TEST_F(CalibrateCliTest, BoardFoundNowhereIsExit6WithoutRig) {
   EXPECT_FALSE(fs::exists(out_ / "rig.yaml"));
 }
 
+// A pose whose capture shows no board (here the cube scene, captured on the same rig) is named, skipped, and the
+// calibration goes on with the poses that remain.
+TEST_F(CalibrateCliTest, PoseWithoutTheBoardIsNamedAndSkipped) {
+  const fs::path cube = fs::path(RFRECON_FIXTURES_DIR) / "cube-anisotropic" / "capture";
+  const auto result = run_cli("calibrate " + pose(0) + " " + pose(1) + " " + cube.string() + " " + pose(2) + " " +
+                              pose(3) + " --board 14x9 --square 20 -o " + (out_ / "rig.yaml").string());
+  EXPECT_EQ(result.exit_code, kExitOk) << result.output;
+  EXPECT_THAT(result.output, HasSubstr(cube.string() + ": board not found"));
+  EXPECT_THAT(result.output, HasSubstr("pose skipped"));
+  EXPECT_TRUE(fs::exists(out_ / "rig.yaml"));
+}
+
 TEST_F(CalibrateCliTest, MixedImageSizesIsExit3) {
   fs::create_directories(out_);
   const fs::path small = out_ / "small.png";
