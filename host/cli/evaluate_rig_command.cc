@@ -37,6 +37,8 @@ void run_evaluate_rig(const EvaluateRigOptions& options) {
   }
   const auto truth = calib::read_rig(options.truth);
   const auto c = calib::compare_rigs(calib::read_rig(options.estimated), truth);
+  const auto views = options.corners.empty() ? std::vector<calib::ViewCorners>{}
+                                             : calib::read_view_corners(options.corners, options.board_poses);
   std::printf("camera     focal %.4f%%  principal point %.3f px\n", 100.0 * c.camera_focal_error,
               c.camera_principal_error_px);
   std::printf("projector  focal %.4f%%  principal point %.3f px\n", 100.0 * c.projector_focal_error,
@@ -46,7 +48,7 @@ void run_evaluate_rig(const EvaluateRigOptions& options) {
               c.depth_rms_error, c.points);
   nlohmann::json corners;
   if (!options.corners.empty()) {
-    const auto e = calib::compare_corners(calib::read_view_corners(options.corners, options.board_poses), truth);
+    const auto e = calib::compare_corners(views, truth);
     for (const auto& [device, errors] : {std::pair{"camera", e.camera}, std::pair{"projector", e.projector}}) {
       std::printf("%-10s corners RMS %.4f px per axis, mean (%+.4f, %+.4f) px, max %.3f px over %d\n", device,
                   errors.rms_px, errors.mean_px.x, errors.mean_px.y, errors.max_px, errors.corners);
