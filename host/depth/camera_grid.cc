@@ -1,4 +1,4 @@
-// Rectified depth to camera-grid depth, points and normals.
+// Rectified depth to camera-grid depth, points and normals, rows on every core.
 #include "host/depth/camera_grid.h"
 
 #include <algorithm>
@@ -9,6 +9,14 @@ namespace rfrecon::depth {
 
 namespace {
 constexpr float kNoValue = std::numeric_limits<float>::quiet_NaN();
+
+// Runs row(y) for every y in [0, rows) on every core; each row writes only its own pixels.
+template <typename Row>
+void for_each_row(int rows, const Row& row) {
+  cv::parallel_for_(cv::Range(0, rows), [&](const cv::Range& range) {
+    for (int y = range.start; y < range.end; ++y) row(y);
+  });
+}
 
 bool finite_point(const cv::Vec3f& p) { return std::isfinite(p[0]); }
 
@@ -39,7 +47,7 @@ cv::Mat sample_rectified_depth(const std::vector<float>& z_rect, const Rectified
                                float jump_relative) {
   cv::Mat z_grid(rect_cam.size(), CV_32F, cv::Scalar(kNoValue));
   const auto z_at = [&](int u, int v) { return z_rect[static_cast<std::size_t>(v) * rows.width + u]; };
-  for (int y = 0; y < rect_cam.rows; ++y) {
+  for_each_row(rect_cam.rows, [&](int y) {
     for (int x = 0; x < rect_cam.cols; ++x) {
       const cv::Vec2f& position = rect_cam.at<cv::Vec2f>(y, x);
       const float u = position[0], v = position[1];
@@ -55,7 +63,7 @@ cv::Mat sample_rectified_depth(const std::vector<float>& z_rect, const Rectified
       const float top = (1.0f - tu) / z[0] + tu / z[1], bottom = (1.0f - tu) / z[2] + tu / z[3];
       z_grid.at<float>(y, x) = 1.0f / ((1.0f - tv) * top + tv * bottom);
     }
-  }
+  });
   return z_grid;
 }
 
@@ -69,7 +77,7 @@ outputs::Reconstruction camera_frame_maps(const cv::Mat& z_rect_mm, const cv::Ma
   maps.confidence = cv::Mat(size, CV_32F, cv::Scalar(0.0f));
   cv::Matx33d cam_from_rect;
   cv::Mat(R1.t()).copyTo(cam_from_rect);
-  for (int y = 0; y < size.height; ++y) {
+  for_each_row(size.height, [&](int y) {
     for (int x = 0; x < size.width; ++x) {
       const float z = z_rect_mm.at<float>(y, x);
       if (!(z > 0.0f)) continue;
@@ -79,8 +87,8 @@ outputs::Reconstruction camera_frame_maps(const cv::Mat& z_rect_mm, const cv::Ma
       maps.points_mm.at<cv::Vec3f>(y, x) = cv::Vec3f(X_cam);
       maps.depth_mm.at<float>(y, x) = static_cast<float>(X_cam[2]);
     }
-  }
-  for (int y = 0; y < size.height; ++y) {
+  });
+  for_each_row(size.height, [&](int y) {
     for (int x = 0; x < size.width; ++x) {
       const cv::Vec3f point = maps.points_mm.at<cv::Vec3f>(y, x);
       cv::Vec3f along_x, along_y;
@@ -95,7 +103,7 @@ outputs::Reconstruction camera_frame_maps(const cv::Mat& z_rect_mm, const cv::Ma
       if (normal.dot(point) > 0.0f) normal = -normal;  // face the camera at the origin
       maps.normals.at<cv::Vec3f>(y, x) = normal;
     }
-  }
+  });
   return maps;
 }
 

@@ -30,16 +30,30 @@ void fill_confidence(outputs::Reconstruction& maps, const cv::Mat& z_rect_mm,
                      const CameraGridTriangulation& triangulation, const RfRectifiedRig& rig,
                      const DepthOptions& options) {
   const float depth_noise_scale = options.fusion.sigma_disparity_px / (rig.f * std::abs(rig.b));
-  for (int y = 0; y < maps.depth_mm.rows; ++y) {
-    for (int x = 0; x < maps.depth_mm.cols; ++x) {
-      const float z = z_rect_mm.at<float>(y, x);
-      if (!(z > 0.0f)) continue;
-      float confidence = agreement(triangulation.epipolar_px.at<float>(y, x), 0.5f);
-      if (options.method != Method::kTriangulate) {
-        confidence *= agreement(z - triangulation.z_rect_mm.at<float>(y, x), 3.0f * z * z * depth_noise_scale);
+  cv::parallel_for_(cv::Range(0, maps.depth_mm.rows), [&](const cv::Range& rows) {
+    for (int y = rows.start; y < rows.end; ++y) {
+      for (int x = 0; x < maps.depth_mm.cols; ++x) {
+        const float z = z_rect_mm.at<float>(y, x);
+        if (!(z > 0.0f)) continue;
+        float confidence = agreement(triangulation.epipolar_px.at<float>(y, x), 0.5f);
+        if (options.method != Method::kTriangulate) {
+          confidence *= agreement(z - triangulation.z_rect_mm.at<float>(y, x), 3.0f * z * z * depth_noise_scale);
+        }
+        maps.confidence.at<float>(y, x) = confidence;
       }
-      maps.confidence.at<float>(y, x) = confidence;
     }
+  });
+}
+
+// Throws before any work: no device, an entry list of the wrong length, a method the capture cannot serve.
+void check_request(const transport::CompressedTransport& transport, const DepthOptions& options,
+                   const std::vector<cl::DeviceContext>& devices) {
+  if (devices.empty()) throw std::invalid_argument("reconstruct_depth: no device");
+  options.entries.check_device_count(devices.size());
+  if (options.method != Method::kTriangulate && transport.setup.dot_spacing == 0) {
+    throw InputError("the " + method_name(options.method) +
+                     " method needs the dot-grid scan (T's full rows for the primal and dual images), and this "
+                     "capture has Gray code only (dot_spacing 0): use --method triangulate, or capture with dots");
   }
 }
 
@@ -57,21 +71,26 @@ Method parse_method(const std::string& name) {
 DepthRun reconstruct_depth(const transport::CompressedTransport& transport, const calib::StereoRig& rig,
                            const std::string& rig_name, const DepthOptions& options,
                            std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
-  if (devices.empty()) throw std::invalid_argument("reconstruct_depth: no device");
-  options.entries.check_device_count(devices.size());
-  if (options.method != Method::kTriangulate && transport.setup.dot_spacing == 0) {
-    throw InputError("the " + method_name(options.method) +
-                     " method needs the dot-grid scan (T's full rows for the primal and dual images), and this "
-                     "capture has Gray code only (dot_spacing 0): use --method triangulate, or capture with dots");
-  }
+  check_request(transport, options, devices);
+  StageClock clock;
+  const Rectification rectification = clock.time("rig geometry", [&] { return depth_rectification(rig, rig_name); });
+  DepthRun run = reconstruct_depth(transport, rig, rectification, rig_name, options, devices, programs);
+  nlohmann::json timings = clock.timings();
+  for (const auto& timing : run.summary["timings"]) timings.push_back(timing);
+  run.summary["timings"] = timings;
+  return run;
+}
+
+DepthRun reconstruct_depth(const transport::CompressedTransport& transport, const calib::StereoRig& rig,
+                           const Rectification& rectification, const std::string& rig_name, const DepthOptions& options,
+                           std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
+  check_request(transport, options, devices);
   DepthRun run;
   nlohmann::json& summary = run.summary;
   summary["method"] = method_name(options.method);
   summary["camera_size"] = {transport.setup.camera_size.width, transport.setup.camera_size.height};
   summary["projector_size"] = {transport.setup.projector_size.width, transport.setup.projector_size.height};
   StageClock clock;
-
-  const Rectification rectification = depth_rectification(rig, rig_name);
   const RfRectifiedRig& rectified = rectification.rig;
   summary["rectified"] = {{"f_px", rectified.f},
                           {"cx_camera_px", rectified.cx_cam},
@@ -112,7 +131,7 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
     reports.push_back(dual.report);
     clock.lap("primal and dual images");
     RectifiedRows rows =
-        rectify_rows(transport, primal.image, dual.image, rig, rectification, triangulation, options.rectification);
+        rectify_rows(transport, primal.image, dual.image, rectification, triangulation, options.rectification);
     clock.lap("rectify");
     const SegmentationStats segments = segment_rows(rows, options.segmentation);
     summary["segmentation"] = {{"usable_pixels", segments.usable},

@@ -47,4 +47,10 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
                            const std::string& rig_name, const DepthOptions& options,
                            std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs);
 
+// The same with the rig's rectification and per-pixel lookups computed beforehand (depth_rectification(rig, ...)), as
+// a scanner making many scans with one calibration does: the first form spends the stage "rig geometry" on them.
+DepthRun reconstruct_depth(const transport::CompressedTransport& transport, const calib::StereoRig& rig,
+                           const Rectification& rectification, const std::string& rig_name, const DepthOptions& options,
+                           std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs);
+
 }  // namespace rfrecon::depth

@@ -2,6 +2,7 @@
 #include "host/depth/rectification.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -23,13 +24,27 @@ namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
+// Runs count_row(y) for every row y in [0, rows) on every core (each row writes only its own pixels) and returns the
+// sum of their counts.
+template <typename CountRow>
+int count_over_rows(int rows, const CountRow& count_row) {
+  std::atomic<int> total{0};
+  cv::parallel_for_(cv::Range(0, rows), [&](const cv::Range& range) {
+    int count = 0;
+    for (int y = range.start; y < range.end; ++y) count += count_row(y);
+    total += count;
+  });
+  return total;
+}
+
 // A pixel on an occlusion boundary sees both surfaces: its spot mixes theirs and it triangulates onto either, whatever
 // its centre sees. Rejects every pixel with a neighbour within `radius` pixels whose depth differs by more than
 // `relative` of its own (both sides of the boundary, `radius` pixels each). Gray-code-only captures need radius 2:
 // there the mixed pixels of a silhouette often fail to decode, leaving a one-pixel gap between the two surfaces.
 void reject_boundary_pixels(CameraGridTriangulation& result, float relative, int radius) {
   const cv::Mat z = result.z_rect_mm.clone();
-  for (int y = 0; y < z.rows; ++y) {
+  result.boundary_pixels = count_over_rows(z.rows, [&](int y) {
+    int rejected = 0;
     for (int x = 0; x < z.cols; ++x) {
       const float centre = z.at<float>(y, x);
       if (std::isnan(centre)) continue;
@@ -42,10 +57,11 @@ void reject_boundary_pixels(CameraGridTriangulation& result, float relative, int
       if (boundary) {
         result.z_rect_mm.at<float>(y, x) = kNaN;
         result.rect_proj_u.at<float>(y, x) = kNaN;
-        ++result.boundary_pixels;
+        ++rejected;
       }
     }
-  }
+    return rejected;
+  });
 }
 
 // A dot's centroid is the weighted mean of the projector pixels lighting the camera pixel's footprint; where the
@@ -62,7 +78,8 @@ void reject_edge_pixels(CameraGridTriangulation& result, const transport::Compre
     return std::isnan(transport.correspondence[2 * c]) ? 0.0f : transport.direct_energy[c];
   };
   constexpr int kNeighbours[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
-  for (int y = 0; y < size.height; ++y) {
+  result.edge_pixels = count_over_rows(size.height, [&](int y) {
+    int rejected = 0;
     for (int x = 0; x < size.width; ++x) {
       if (std::isnan(result.z_rect_mm.at<float>(y, x))) continue;
       const float centre = energy(x, y);
@@ -75,10 +92,11 @@ void reject_edge_pixels(CameraGridTriangulation& result, const transport::Compre
       if (edge) {
         result.z_rect_mm.at<float>(y, x) = kNaN;
         result.rect_proj_u.at<float>(y, x) = kNaN;
-        ++result.edge_pixels;
+        ++rejected;
       }
     }
-  }
+    return rejected;
+  });
 }
 
 }  // namespace
@@ -100,6 +118,23 @@ Rectification depth_rectification(const calib::StereoRig& rig, const std::string
   rectification.R2 = cv::Mat(rows.rect_from_proj).clone();
   rectification.P1 = rows.P1;
   rectification.P2 = rows.P2;
+  const cv::Size camera_size = rig.camera_size;
+  std::vector<cv::Point2f> pixels;
+  pixels.reserve(static_cast<std::size_t>(camera_size.area()));
+  for (int y = 0; y < camera_size.height; ++y) {
+    for (int x = 0; x < camera_size.width; ++x) pixels.emplace_back(static_cast<float>(x), static_cast<float>(y));
+  }
+  const std::vector<cv::Point2f> rect_cam = calib::undistort_points(
+      pixels, rig.camera_matrix, rig.dist_coeffs, rectification.R1, rectification.P1, calib::undistort_criteria());
+  rectification.rect_cam = cv::Mat(camera_size, CV_32FC2);
+  std::copy(rect_cam.begin(), rect_cam.end(), rectification.rect_cam.begin<cv::Vec2f>());
+  rectification.omega_cam = pixel_solid_angles(rig.camera_matrix, rig.dist_coeffs, camera_size);
+  rectification.omega_proj = pixel_solid_angles(rig.projector_matrix, rig.projector_dist_coeffs, rig.projector_size);
+  cv::initUndistortRectifyMap(rig.camera_matrix, rig.dist_coeffs, rectification.R1, rectification.P1,
+                              rectification.camera_size, CV_32FC1, rectification.cam_map_x, rectification.cam_map_y);
+  cv::initUndistortRectifyMap(rig.projector_matrix, rig.projector_dist_coeffs, rectification.R2, rectification.P2,
+                              cv::Size(rectification.projector_width, rectification.camera_size.height), CV_32FC1,
+                              rectification.proj_map_x, rectification.proj_map_y);
   return rectification;
 }
 
@@ -115,78 +150,77 @@ CameraGridTriangulation triangulate_camera_grid(const transport::CompressedTrans
   }
   const RfRectifiedRig& rectified = rectification.rig;
   CameraGridTriangulation result;
-  std::vector<cv::Point2f> pixels, correspondences;
+  std::vector<cv::Point2f> correspondences;
   std::vector<int> with_correspondence;
-  pixels.reserve(transport.camera_pixels());
   for (int c = 0; c < camera_size.area(); ++c) {
-    const int row = c / camera_size.width;  // integer division: the pixel's row
-    pixels.emplace_back(static_cast<float>(c % camera_size.width), static_cast<float>(row));
     const float x_p = transport.correspondence[2 * static_cast<std::size_t>(c)];
     if (!std::isnan(x_p)) {
       correspondences.emplace_back(x_p, transport.correspondence[2 * static_cast<std::size_t>(c) + 1]);
       with_correspondence.push_back(c);
     }
   }
-  const std::vector<cv::Point2f> rect_cam = calib::undistort_points(
-      pixels, rig.camera_matrix, rig.dist_coeffs, rectification.R1, rectification.P1, calib::undistort_criteria());
   const std::vector<cv::Point2f> rect_proj =
       calib::undistort_points(correspondences, rig.projector_matrix, rig.projector_dist_coeffs, rectification.R2,
                               rectification.P2, calib::undistort_criteria());
-  result.rect_cam = cv::Mat(camera_size, CV_32FC2);
-  std::copy(rect_cam.begin(), rect_cam.end(), result.rect_cam.begin<cv::Vec2f>());
+  result.rect_cam = rectification.rect_cam;
   result.rect_proj_u = cv::Mat(camera_size, CV_32F, cv::Scalar(kNaN));
   result.z_rect_mm = cv::Mat(camera_size, CV_32F, cv::Scalar(kNaN));
   result.epipolar_px = cv::Mat(camera_size, CV_32F, cv::Scalar(kNaN));
   result.correspondences = static_cast<int>(with_correspondence.size());
-  for (std::size_t i = 0; i < with_correspondence.size(); ++i) {
-    const int c = with_correspondence[i];
-    const int y = c / camera_size.width, x = c % camera_size.width;
-    const cv::Point2f cam = rect_cam[static_cast<std::size_t>(c)], proj = rect_proj[i];
-    const float off_row = std::abs(proj.y - cam.y);
-    result.epipolar_px.at<float>(y, x) = off_row;
-    const float disparity = (cam.x - rectified.cx_cam) - (proj.x - rectified.cx_proj);
-    const float z = rectified.f * rectified.b / disparity;
-    if (off_row > options.epipolar_tolerance_px || !(z > 0.0f)) {
-      ++result.off_epipolar;
-      continue;
+  std::atomic<int> off_epipolar{0};
+  cv::parallel_for_(cv::Range(0, result.correspondences), [&](const cv::Range& range) {
+    int off = 0;
+    for (int i = range.start; i < range.end; ++i) {
+      const int c = with_correspondence[static_cast<std::size_t>(i)];
+      const int y = c / camera_size.width, x = c % camera_size.width;
+      const cv::Vec2f cam = rectification.rect_cam.at<cv::Vec2f>(y, x);
+      const cv::Point2f proj = rect_proj[static_cast<std::size_t>(i)];
+      const float off_row = std::abs(proj.y - cam[1]);
+      result.epipolar_px.at<float>(y, x) = off_row;
+      const float disparity = (cam[0] - rectified.cx_cam) - (proj.x - rectified.cx_proj);
+      const float z = rectified.f * rectified.b / disparity;
+      if (off_row > options.epipolar_tolerance_px || !(z > 0.0f)) {
+        ++off;
+        continue;
+      }
+      result.rect_proj_u.at<float>(y, x) = proj.x;
+      result.z_rect_mm.at<float>(y, x) = z;
     }
-    result.rect_proj_u.at<float>(y, x) = proj.x;
-    result.z_rect_mm.at<float>(y, x) = z;
-  }
+    off_epipolar += off;
+  });
+  result.off_epipolar = off_epipolar;
   reject_boundary_pixels(result, options.boundary_relative, transport.setup.dot_spacing == 0 ? 2 : 1);
   if (transport.setup.dot_spacing > 0) reject_edge_pixels(result, transport, options.edge_relative);
   return result;
 }
 
 RectifiedRows rectify_rows(const transport::CompressedTransport& transport, const std::vector<float>& primal,
-                           const std::vector<float>& dual, const calib::StereoRig& rig,
-                           const Rectification& rectification, const CameraGridTriangulation& triangulation,
-                           const RectificationOptions& options) {
+                           const std::vector<float>& dual, const Rectification& rectification,
+                           const CameraGridTriangulation& triangulation, const RectificationOptions& options) {
   const cv::Size camera_size = transport.setup.camera_size, projector_size = transport.setup.projector_size;
   if (primal.size() != transport.camera_pixels() || dual.size() != transport.projector_pixels()) {
     throw std::invalid_argument("rectify_rows: primal or dual image of the wrong size");
   }
   // Radiance-like images: primal and dual divided by their pixels' solid angles. Camera pixels that cannot carry the
   // ODE (no correspondence, saturated, dark) become NaN so that no interpolated value mixes them in.
-  const cv::Mat omega_cam = pixel_solid_angles(rig.camera_matrix, rig.dist_coeffs, camera_size);
-  const cv::Mat omega_proj = pixel_solid_angles(rig.projector_matrix, rig.projector_dist_coeffs, projector_size);
-  cv::Mat e_cam(camera_size, CV_32F, cv::Scalar(kNaN)), e_proj(projector_size, CV_32F);
+  cv::Mat e_cam(camera_size, CV_32F, cv::Scalar(kNaN)), e_proj;
   const int k = transport.k();
-  std::vector<float> usable;
-  for (int c = 0; c < camera_size.area(); ++c) {
-    const int y = c / camera_size.width, x = c % camera_size.width;
-    const float* weights = &transport.weights[static_cast<std::size_t>(c) * static_cast<std::size_t>(k)];
-    const bool saturated = *std::max_element(weights, weights + k) >= options.saturation;
-    if (saturated || !(primal[static_cast<std::size_t>(c)] > 0.0f) ||
-        std::isnan(triangulation.z_rect_mm.at<float>(y, x))) {
-      continue;
+  cv::parallel_for_(cv::Range(0, camera_size.height), [&](const cv::Range& range) {
+    for (int y = range.start; y < range.end; ++y) {
+      for (int x = 0; x < camera_size.width; ++x) {
+        const std::size_t c = static_cast<std::size_t>(y) * static_cast<std::size_t>(camera_size.width) + x;
+        const float* weights = &transport.weights[c * static_cast<std::size_t>(k)];
+        const bool saturated = *std::max_element(weights, weights + k) >= options.saturation;
+        if (saturated || !(primal[c] > 0.0f) || std::isnan(triangulation.z_rect_mm.at<float>(y, x))) continue;
+        e_cam.at<float>(y, x) = primal[c] / rectification.omega_cam.at<float>(y, x);
+      }
     }
-    e_cam.at<float>(y, x) = primal[static_cast<std::size_t>(c)] / omega_cam.at<float>(y, x);
-    usable.push_back(e_cam.at<float>(y, x));
-  }
-  for (int p = 0; p < projector_size.area(); ++p) {
-    const int y = p / projector_size.width, x = p % projector_size.width;
-    e_proj.at<float>(y, x) = std::max(dual[static_cast<std::size_t>(p)], 0.0f) / omega_proj.at<float>(y, x);
+  });
+  cv::divide(cv::max(cv::Mat(projector_size, CV_32F, const_cast<float*>(dual.data())), 0.0f), rectification.omega_proj,
+             e_proj);
+  std::vector<float> usable;
+  for (auto e = e_cam.begin<float>(); e != e_cam.end<float>(); ++e) {
+    if (!std::isnan(*e)) usable.push_back(*e);
   }
   // A common factor cancels in the ODE: scale both so that the camera's median is 1.
   if (!usable.empty()) {
@@ -202,11 +236,6 @@ RectifiedRows rectify_rows(const transport::CompressedTransport& transport, cons
   rows.width = rectification.camera_size.width;
   rows.height = rectification.camera_size.height;
   rows.proj_width = rectification.projector_width;
-  cv::Mat cam_map_x, cam_map_y, proj_map_x, proj_map_y;
-  cv::initUndistortRectifyMap(rig.camera_matrix, rig.dist_coeffs, rectification.R1, rectification.P1,
-                              rectification.camera_size, CV_32FC1, cam_map_x, cam_map_y);
-  cv::initUndistortRectifyMap(rig.projector_matrix, rig.projector_dist_coeffs, rectification.R2, rectification.P2,
-                              cv::Size(rows.proj_width, rows.height), CV_32FC1, proj_map_x, proj_map_y);
   rows.e_cam.assign(rows.pixels(), kNaN);
   rows.z_tri.assign(rows.pixels(), kNaN);
   rows.e_proj.assign(static_cast<std::size_t>(rows.height) * static_cast<std::size_t>(rows.proj_width), 0.0f);
@@ -216,7 +245,7 @@ RectifiedRows rectify_rows(const transport::CompressedTransport& transport, cons
     for (int v = range.start; v < range.end; ++v) {
       for (int u = 0; u < rows.width; ++u) {
         const std::size_t i = static_cast<std::size_t>(v) * static_cast<std::size_t>(rows.width) + u;
-        const float x = cam_map_x.at<float>(v, u), y = cam_map_y.at<float>(v, u);
+        const float x = rectification.cam_map_x.at<float>(v, u), y = rectification.cam_map_y.at<float>(v, u);
         const float u_proj = sample_bilinear(triangulation.rect_proj_u, x, y);
         const float e = sample_bilinear(e_cam, x, y);
         const float disparity = (static_cast<float>(u) - rectified.cx_cam) - (u_proj - rectified.cx_proj);
@@ -227,7 +256,8 @@ RectifiedRows rectify_rows(const transport::CompressedTransport& transport, cons
         }
       }
       for (int u = 0; u < rows.proj_width; ++u) {
-        const float e_p = sample_bilinear(e_proj, proj_map_x.at<float>(v, u), proj_map_y.at<float>(v, u));
+        const float e_p =
+            sample_bilinear(e_proj, rectification.proj_map_x.at<float>(v, u), rectification.proj_map_y.at<float>(v, u));
         if (e_p > 0.0f) rows.e_proj[static_cast<std::size_t>(v) * static_cast<std::size_t>(rows.proj_width) + u] = e_p;
       }
     }

@@ -20,13 +20,19 @@ struct RectificationOptions {
 // The rectification the depth stage works in: calib::rectify_rig, computed from the rig's intrinsics, R and T (the
 // rectification keys of rig.yaml are not read, so a file of any version gives the same rows). Rows are epipolar
 // lines for any baseline direction; the focal length is the finer of the two devices', so neither image is sampled
-// coarser than its pixels.
+// coarser than its pixels. With it, the per-pixel lookups that depend on the rig alone: computed once per
+// calibration, they serve every scan made with it (docs/performance.md, "Rig geometry").
 struct Rectification {
-  RfRectifiedRig rig{};     // f, principal points (px), projector offset b (mm, > 0)
-  cv::Size camera_size;     // rectified camera image
-  int projector_width = 0;  // rectified projector image width (its rows are the camera's)
-  cv::Mat R1, R2;           // 3x3 CV_64F rotations: rectified from camera, rectified from projector
-  cv::Mat P1, P2;           // 3x4 CV_64F projection matrices of the rectified camera and projector
+  RfRectifiedRig rig{};          // f, principal points (px), projector offset b (mm, > 0)
+  cv::Size camera_size;          // rectified camera image
+  int projector_width = 0;       // rectified projector image width (its rows are the camera's)
+  cv::Mat R1, R2;                // 3x3 CV_64F rotations: rectified from camera, rectified from projector
+  cv::Mat P1, P2;                // 3x4 CV_64F projection matrices of the rectified camera and projector
+  cv::Mat rect_cam;              // CV_32FC2, camera size: rectified camera position (u, v) of each camera pixel centre
+  cv::Mat omega_cam;             // CV_32F, camera size: solid angle of each camera pixel (host/depth/solid_angle.h)
+  cv::Mat omega_proj;            // CV_32F, projector size: the same for each projector pixel
+  cv::Mat cam_map_x, cam_map_y;  // CV_32F, rectified camera size: camera pixel seen at each rectified pixel
+  cv::Mat proj_map_x, proj_map_y;  // CV_32F, rectified projector size: the same for the projector
 };
 
 // Throws InputError naming `rig_name` and the key when the rig cannot be rectified into rows (degenerate baseline,
@@ -45,7 +51,7 @@ struct CameraGridTriangulation {
   int edge_pixels = 0;      // of the others, rejected on albedo, shadow and silhouette edges (biased centroids)
 };
 
-// Throws InputError when T's camera or projector size differs from the rig's.
+// Throws InputError when T's camera or projector size differs from the rig's. `rectification` is the rig's.
 CameraGridTriangulation triangulate_camera_grid(const transport::CompressedTransport& transport,
                                                 const calib::StereoRig& rig, const Rectification& rectification,
                                                 const RectificationOptions& options);
@@ -53,8 +59,7 @@ CameraGridTriangulation triangulate_camera_grid(const transport::CompressedTrans
 // Rectified rows with e_cam, e_proj and z_tri filled (runs left empty: see host/depth/row_segmentation.h).
 // primal = T 1 (camera pixels), dual = T^T 1 (projector pixels).
 RectifiedRows rectify_rows(const transport::CompressedTransport& transport, const std::vector<float>& primal,
-                           const std::vector<float>& dual, const calib::StereoRig& rig,
-                           const Rectification& rectification, const CameraGridTriangulation& triangulation,
-                           const RectificationOptions& options);
+                           const std::vector<float>& dual, const Rectification& rectification,
+                           const CameraGridTriangulation& triangulation, const RectificationOptions& options);
 
 }  // namespace rfrecon::depth
