@@ -24,6 +24,24 @@ namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
+// The value at point p of the device (pixel centres at integers) of `grid` (CV_32FC2 over the points (x - 1, y - 1)),
+// bilinearly interpolated in double; false where p lies outside it (or is NaN). The grid holds a smooth map (lens
+// undistortion and a rotation), which a pixel-spaced bilinear interpolation follows to about 1e-4 px.
+bool interpolate_grid(const cv::Mat& grid, cv::Point2f p, cv::Point2f& out) {
+  const double x = static_cast<double>(p.x) + 1.0, y = static_cast<double>(p.y) + 1.0;
+  if (!(x >= 0.0 && y >= 0.0 && x < grid.cols - 1 && y < grid.rows - 1)) return false;
+  const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+  const double tx = x - x0, ty = y - y0;
+  const cv::Vec2f* top = grid.ptr<cv::Vec2f>(y0) + x0;
+  const cv::Vec2f* bottom = grid.ptr<cv::Vec2f>(y0 + 1) + x0;
+  for (int axis = 0; axis < 2; ++axis) {
+    const double upper = top[0][axis] + tx * (top[1][axis] - top[0][axis]);
+    const double lower = bottom[0][axis] + tx * (bottom[1][axis] - bottom[0][axis]);
+    (axis == 0 ? out.x : out.y) = static_cast<float>(upper + ty * (lower - upper));
+  }
+  return true;
+}
+
 // Runs count_row(y) for every row y in [0, rows) on every core (each row writes only its own pixels) and returns the
 // sum of their counts.
 template <typename CountRow>
@@ -128,6 +146,17 @@ Rectification depth_rectification(const calib::StereoRig& rig, const std::string
       pixels, rig.camera_matrix, rig.dist_coeffs, rectification.R1, rectification.P1, calib::undistort_criteria());
   rectification.rect_cam = cv::Mat(camera_size, CV_32FC2);
   std::copy(rect_cam.begin(), rect_cam.end(), rectification.rect_cam.begin<cv::Vec2f>());
+  std::vector<cv::Point2f> projector_points;
+  for (int y = -1; y <= rig.projector_size.height; ++y) {
+    for (int x = -1; x <= rig.projector_size.width; ++x) {
+      projector_points.emplace_back(static_cast<float>(x), static_cast<float>(y));
+    }
+  }
+  const std::vector<cv::Point2f> proj_grid =
+      calib::undistort_points(projector_points, rig.projector_matrix, rig.projector_dist_coeffs, rectification.R2,
+                              rectification.P2, calib::undistort_criteria());
+  rectification.proj_grid = cv::Mat(rig.projector_size + cv::Size(2, 2), CV_32FC2);
+  std::copy(proj_grid.begin(), proj_grid.end(), rectification.proj_grid.begin<cv::Vec2f>());
   rectification.omega_cam = pixel_solid_angles(rig.camera_matrix, rig.dist_coeffs, camera_size);
   rectification.omega_proj = pixel_solid_angles(rig.projector_matrix, rig.projector_dist_coeffs, rig.projector_size);
   cv::initUndistortRectifyMap(rig.camera_matrix, rig.dist_coeffs, rectification.R1, rectification.P1,
@@ -136,6 +165,24 @@ Rectification depth_rectification(const calib::StereoRig& rig, const std::string
                               cv::Size(rectification.projector_width, rectification.camera_size.height), CV_32FC1,
                               rectification.proj_map_x, rectification.proj_map_y);
   return rectification;
+}
+
+std::vector<cv::Point2f> rectify_projector_points(const std::vector<cv::Point2f>& points, const calib::StereoRig& rig,
+                                                  const Rectification& rectification) {
+  std::vector<cv::Point2f> rectified(points.size());
+  std::vector<std::size_t> off_grid;  // points outside the grid, undistorted one by one
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!interpolate_grid(rectification.proj_grid, points[i], rectified[i])) off_grid.push_back(i);
+  }
+  if (!off_grid.empty()) {
+    std::vector<cv::Point2f> exact;
+    exact.reserve(off_grid.size());
+    for (const std::size_t i : off_grid) exact.push_back(points[i]);
+    exact = calib::undistort_points(exact, rig.projector_matrix, rig.projector_dist_coeffs, rectification.R2,
+                                    rectification.P2, calib::undistort_criteria());
+    for (std::size_t j = 0; j < off_grid.size(); ++j) rectified[off_grid[j]] = exact[j];
+  }
+  return rectified;
 }
 
 CameraGridTriangulation triangulate_camera_grid(const transport::CompressedTransport& transport,
@@ -159,9 +206,7 @@ CameraGridTriangulation triangulate_camera_grid(const transport::CompressedTrans
       with_correspondence.push_back(c);
     }
   }
-  const std::vector<cv::Point2f> rect_proj =
-      calib::undistort_points(correspondences, rig.projector_matrix, rig.projector_dist_coeffs, rectification.R2,
-                              rectification.P2, calib::undistort_criteria());
+  const std::vector<cv::Point2f> rect_proj = rectify_projector_points(correspondences, rig, rectification);
   result.rect_cam = rectification.rect_cam;
   result.rect_proj_u = cv::Mat(camera_size, CV_32F, cv::Scalar(kNaN));
   result.z_rect_mm = cv::Mat(camera_size, CV_32F, cv::Scalar(kNaN));

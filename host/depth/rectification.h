@@ -2,6 +2,8 @@
 // triangulation of every correspondence, and the normalised primal and dual images resampled onto rectified rows.
 #pragma once
 
+#include <vector>
+
 #include <opencv2/core.hpp>
 
 #include "calib/rig.h"
@@ -31,6 +33,8 @@ struct Rectification {
   cv::Mat rect_cam;              // CV_32FC2, camera size: rectified camera position (u, v) of each camera pixel centre
   cv::Mat omega_cam;             // CV_32F, camera size: solid angle of each camera pixel (host/depth/solid_angle.h)
   cv::Mat omega_proj;            // CV_32F, projector size: the same for each projector pixel
+  cv::Mat proj_grid;             // CV_32FC2, projector size + 2: rectified projector position of each projector
+                                 // point (x - 1, y - 1), pixel centres and a pixel of margin around the image
   cv::Mat cam_map_x, cam_map_y;  // CV_32F, rectified camera size: camera pixel seen at each rectified pixel
   cv::Mat proj_map_x, proj_map_y;  // CV_32F, rectified projector size: the same for the projector
 };
@@ -38,6 +42,12 @@ struct Rectification {
 // Throws InputError naming `rig_name` and the key when the rig cannot be rectified into rows (degenerate baseline,
 // devices facing away or at a grazing angle to each other).
 Rectification depth_rectification(const calib::StereoRig& rig, const std::string& rig_name);
+
+// Rectified projector positions of projector points (pixels, distorted): interpolated in rectification.proj_grid where
+// they lie on it, within 2.5e-4 px of the exact undistortion on a strong lens (tests/depth/rectification_test.cc);
+// undistorted exactly elsewhere. `rectification` is the rig's.
+std::vector<cv::Point2f> rectify_projector_points(const std::vector<cv::Point2f>& points, const calib::StereoRig& rig,
+                                                  const Rectification& rectification);
 
 // Per original camera pixel: triangulation of its correspondence through the rectified rig.
 struct CameraGridTriangulation {

@@ -7,6 +7,7 @@
 
 #include "host/cl/kernel_launch.h"
 #include "host/transport/accumulator.h"
+#include "kernels/common/lanes.h"
 #include "kernels/transport/gray_decode.h"
 
 namespace rfrecon::transport {
@@ -146,13 +147,15 @@ class DeviceAccumulator final : public TransportAccumulator {
     cl::set_args(dot_frames_, batch_, static_cast<cl_int>(pending_), offsets, setup_.dot_spacing,
                  setup_.projector_size.width, setup_.projector_size.height, setup_.thresholds.noise, black_, flags_,
                  gray_x_, gray_y_, indices_, weights_, energy_, count());
-    run(dot_frames_);
+    run(dot_frames_, entry_ == KernelEntry::kNdRange ? (n_ + RF_LANES - 1) / RF_LANES : n_);
     pending_ = 0;
     offsets_.fill(0);
   }
 
-  void run(const ::cl::Kernel& kernel) {
-    cl::enqueue_kernel(device_.queue(), kernel, entry_, n_);
+  // Runs kernel over `items` (NDRange: work-items; default one per pixel) and waits for it.
+  void run(const ::cl::Kernel& kernel) { run(kernel, n_); }
+  void run(const ::cl::Kernel& kernel, std::size_t items) {
+    cl::enqueue_kernel(device_.queue(), kernel, entry_, items);
     RF_CL_CHECK(device_.queue().finish());
   }
 

@@ -1,6 +1,7 @@
 // Light transport compression (bodies in transport/compression.h): dot_frames_* streams a batch of up to
-// RF_FRAME_BATCH dot-grid frames into the ELL rows, finalize_* computes the sub-pixel correspondence.
-// `frames` holds the batch (frame f at f * n), `offsets` RF_FRAME_BATCH (x, y) dot offsets (unused ones 0).
+// RF_FRAME_BATCH dot-grid frames into the ELL rows (the NDRange entry RF_LANES pixels per work-item), finalize_*
+// computes the sub-pixel correspondence. `frames` holds the batch (frame f at f * n), `offsets` RF_FRAME_BATCH (x, y)
+// dot offsets (unused ones 0).
 #include "common/target.h"
 
 // Exact agreement with the C++ reference: no fused multiply-add contraction.
@@ -14,14 +15,22 @@ __kernel void dot_frames_ndrange(__global const float* restrict frames, int fram
                                  __global const uchar* restrict flags, __global const uint* restrict projector_x,
                                  __global const uint* restrict projector_y, __global int* restrict indices,
                                  __global float* restrict weights, __global float* restrict energy, uint n) {
-  const uint c = get_global_id(0);
-  if (c >= n) return;
+  // Work-item i: pixels i RF_LANES .. (i + 1) RF_LANES - 1, in vector lanes; the last one's tail pixel by pixel.
+  const uint c0 = get_global_id(0) * RF_LANES;
+  if (c0 >= n) return;
   int offsets_x[RF_FRAME_BATCH];
   int offsets_y[RF_FRAME_BATCH];
   rf_load_dot_offsets(offsets, offsets_x, offsets_y);
   const RfDotGrid grid = {spacing, projector_width, projector_height, noise_threshold};
-  rf_dot_frames_pixel(c, n, frame_count, offsets_x, offsets_y, grid, frames, black, flags, projector_x, projector_y,
-                      indices, weights, energy);
+  if (c0 + RF_LANES <= n) {
+    rf_dot_frames_lanes(c0, n, frame_count, offsets_x, offsets_y, grid, frames, black, flags, projector_x, projector_y,
+                        indices, weights, energy);
+    return;
+  }
+  for (uint c = c0; c < n; ++c) {
+    rf_dot_frames_pixel(c, n, frame_count, offsets_x, offsets_y, grid, frames, black, flags, projector_x, projector_y,
+                        indices, weights, energy);
+  }
 }
 
 RF_SINGLE_TASK

@@ -17,35 +17,26 @@
 #ifndef RFRECON_KERNELS_TRANSPORT_COMPRESSION_H
 #define RFRECON_KERNELS_TRANSPORT_COMPRESSION_H
 
+#include "common/lanes.h"
 #include "common/params.h"
 #include "common/portable.h"
 #include "common/target.h"
 #include "transport/flags.h"
 
-#if defined(RF_TARGET_INTEL_FPGA) || defined(RF_TARGET_XILINX_FPGA) || defined(RF_TARGET_HLS)
-// x mod s for x >= 0 and s among RF_DOT_SPACINGS: one divider by a constant per supported spacing, no run-time one.
-RF_INLINE int rf_mod_spacing(int x, int s) {
-  const int spacings[RF_DOT_SPACING_COUNT] = RF_DOT_SPACINGS;
-  int r = 0;
-  RF_UNROLL
-  for (int i = 0; i < RF_DOT_SPACING_COUNT; ++i) {
-    if (s == spacings[i]) r = x % spacings[i];
-  }
-  return r;
-}
-#else
-RF_INLINE int rf_mod_spacing(int x, int s) { return x % s; }
+// The window arithmetic, on int for one pixel (names as below) and, in OpenCL C, on RF_LANES_INT for RF_LANES pixels
+// at once (names with _lanes: transport/dot_window.h).
+#define RF_DOT_INT int
+#define RF_DOT_FN(name) name
+#include "transport/dot_window.h"
+#undef RF_DOT_INT
+#undef RF_DOT_FN
+#ifdef __OPENCL_VERSION__
+#define RF_DOT_INT RF_LANES_INT
+#define RF_DOT_FN(name) RF_LANES_FN(name)
+#include "transport/dot_window.h"
+#undef RF_DOT_INT
+#undef RF_DOT_FN
 #endif
-
-// The first coordinate of a pixel's s-wide window and its residue mod s (x0 >= -(s-1)/2 > -s).
-RF_INLINE int rf_window_start(unsigned coordinate, int s) { return (int)coordinate - ((s - 1) >> 1); }
-RF_INLINE int rf_window_residue(int x0, int s) { return x0 >= 0 ? rf_mod_spacing(x0, s) : x0 + s; }
-
-// The lit dot of the offset in the window starting at x0 with residue a.
-RF_INLINE int rf_window_dot(int x0, int a, int offset, int s) {
-  const int d = offset - a;
-  return x0 + (d < 0 ? d + s : d);
-}
 
 // Inserts (q, v) into a row held in registers, sorted by decreasing weight (after equal weights), dropping the
 // weakest. Compare-and-shift network: slot k takes v when v beats it but not slot k-1, or slot k-1's entry when v
@@ -74,6 +65,36 @@ typedef struct {  // NOLINT(modernize-use-using): shared with OpenCL C, which ha
   float noise_threshold;
 } RfDotGrid;
 
+// Pixel c's ELL row and energy updated with the batch's contributions, in the batch's order: frame f lit projector
+// pixel dot[f * stride] (-1: none) with value[f * stride].
+RF_INLINE void rf_dot_update_row(unsigned c, const float* value, const int* dot, int stride, RF_GLOBAL int* indices,
+                                 RF_GLOBAL float* weights, RF_GLOBAL float* energy) {
+  RF_GLOBAL int* row_index = indices + (size_t)c * RF_K;
+  RF_GLOBAL float* row_weight = weights + (size_t)c * RF_K;
+  int index[RF_K] RF_PARTITION_COMPLETE;
+  float weight[RF_K] RF_PARTITION_COMPLETE;
+  RF_UNROLL
+  for (int k = 0; k < RF_K; ++k) {
+    index[k] = row_index[k];
+    weight[k] = row_weight[k];
+  }
+  float e = energy[c];
+  RF_UNROLL
+  for (int f = 0; f < RF_FRAME_BATCH; ++f) {
+    const int at = f * stride;
+    if (dot[at] >= 0) {
+      e += value[at];
+      rf_insert_entry(dot[at], value[at], index, weight);
+    }
+  }
+  RF_UNROLL
+  for (int k = 0; k < RF_K; ++k) {
+    row_index[k] = index[k];
+    row_weight[k] = weight[k];
+  }
+  energy[c] = e;
+}
+
 // A batch of frame_count <= RF_FRAME_BATCH frames (offsets_x/offsets_y: their dot offsets) at pixel c of n.
 RF_INLINE void rf_dot_frames_pixel(unsigned c, unsigned n, int frame_count, const int* offsets_x, const int* offsets_y,
                                    RfDotGrid grid, RF_GLOBAL const float* frames, RF_GLOBAL const float* black,
@@ -82,8 +103,8 @@ RF_INLINE void rf_dot_frames_pixel(unsigned c, unsigned n, int frame_count, cons
                                    RF_GLOBAL float* weights, RF_GLOBAL float* energy) {
   if (!RF_COMPRESSIBLE(flags[c])) return;
   const int s = grid.spacing;
-  const int x0 = rf_window_start(projector_x[c], s);
-  const int y0 = rf_window_start(projector_y[c], s);
+  const int x0 = rf_window_start((int)projector_x[c], s);
+  const int y0 = rf_window_start((int)projector_y[c], s);
   const int ax = rf_window_residue(x0, s);
   const int ay = rf_window_residue(y0, s);
   const float dark = black[c];
@@ -102,31 +123,48 @@ RF_INLINE void rf_dot_frames_pixel(unsigned c, unsigned n, int frame_count, cons
     dot[f] = lit ? qy * grid.projector_width + qx : -1;
     reached |= lit;
   }
-  if (!reached) return;
-  RF_GLOBAL int* row_index = indices + (size_t)c * RF_K;
-  RF_GLOBAL float* row_weight = weights + (size_t)c * RF_K;
-  int index[RF_K] RF_PARTITION_COMPLETE;
-  float weight[RF_K] RF_PARTITION_COMPLETE;
-  RF_UNROLL
-  for (int k = 0; k < RF_K; ++k) {
-    index[k] = row_index[k];
-    weight[k] = row_weight[k];
-  }
-  float e = energy[c];
-  RF_UNROLL
-  for (int f = 0; f < RF_FRAME_BATCH; ++f) {
-    if (dot[f] >= 0) {
-      e += value[f];
-      rf_insert_entry(dot[f], value[f], index, weight);
-    }
-  }
-  RF_UNROLL
-  for (int k = 0; k < RF_K; ++k) {
-    row_index[k] = index[k];
-    row_weight[k] = weight[k];
-  }
-  energy[c] = e;
+  if (reached) rf_dot_update_row(c, value, dot, 1, indices, weights, energy);
 }
+
+#ifdef __OPENCL_VERSION__
+// The same for the RF_LANES pixels c0 .. c0 + RF_LANES - 1 (all < n) at once, one per vector lane: the batch's
+// contributions in vector arithmetic, then the rows of the pixels a frame reached, one by one.
+RF_INLINE void rf_dot_frames_lanes(unsigned c0, unsigned n, int frame_count, const int* offsets_x, const int* offsets_y,
+                                   RfDotGrid grid, __global const float* frames, __global const float* black,
+                                   __global const uchar* flags, __global const uint* projector_x,
+                                   __global const uint* projector_y, __global int* indices, __global float* weights,
+                                   __global float* energy) {
+  const int8 compressible = RF_COMPRESSIBLE(convert_uint8(vload8(0, flags + c0)));
+  const int s = grid.spacing;
+  const int8 x0 = RF_LANES_FN(rf_window_start)(convert_int8(vload8(0, projector_x + c0)), s);
+  const int8 y0 = RF_LANES_FN(rf_window_start)(convert_int8(vload8(0, projector_y + c0)), s);
+  const int8 ax = RF_LANES_FN(rf_window_residue)(x0, s);
+  const int8 ay = RF_LANES_FN(rf_window_residue)(y0, s);
+  const float8 dark = vload8(0, black + c0);
+  float value[RF_FRAME_BATCH * RF_LANES];  // frame f of lane l at f * RF_LANES + l
+  int dot[RF_FRAME_BATCH * RF_LANES];
+  int8 reached = 0;
+  for (int f = 0; f < RF_FRAME_BATCH; ++f) {
+    const int8 qx = RF_LANES_FN(rf_window_dot)(x0, ax, offsets_x[f], s);
+    const int8 qy = RF_LANES_FN(rf_window_dot)(y0, ay, offsets_y[f], s);
+    const int in_batch = f < frame_count;
+    const float8 v = in_batch ? vload8(0, frames + (size_t)f * n + c0) - dark : 0.0f;
+    // The comparisons' masks (-1 or 0 per lane) combined bitwise: written with && between these vectors and the
+    // scalar f < frame_count, no lane was ever lit under oclgrind (PoCL's were right).
+    const int8 lit = (in_batch ? compressible : 0) & (v > grid.noise_threshold) & (qx >= 0) &
+                     (qx < grid.projector_width) & (qy >= 0) & (qy < grid.projector_height);
+    vstore8(lit ? v : 0.0f, f, value);
+    vstore8(lit ? qy * grid.projector_width + qx : -1, f, dot);
+    reached |= lit;
+  }
+  if (!any(reached)) return;
+  int lanes_reached[RF_LANES];
+  vstore8(reached, 0, lanes_reached);
+  for (int l = 0; l < RF_LANES; ++l) {
+    if (lanes_reached[l]) rf_dot_update_row(c0 + l, value + l, dot + l, RF_LANES, indices, weights, energy);
+  }
+}
+#endif
 
 // The batch's RF_FRAME_BATCH (x, y) dot offsets, copied from `offsets` into private arrays.
 RF_INLINE void rf_load_dot_offsets(RF_GLOBAL const int* offsets, int* offsets_x, int* offsets_y) {

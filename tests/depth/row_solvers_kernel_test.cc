@@ -1,6 +1,7 @@
 // Row solvers of the depth stage: the C++ references against the analytic plane (physics), and the OpenCL kernels
 // (both entries, on row tiles) against the references.
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -105,6 +106,30 @@ TEST_P(RowSolversKernel, FusionMatchesReferenceOnTiles) {
       fuse_rows_opencl(devices_.front(), programs_, GetParam(), rows_, start_second, options, 3, rows_.height);
   first.insert(first.end(), second.begin(), second.end());
   expect_close(first, reference);
+}
+
+TEST_P(RowSolversKernel, RowsOfDifferentRunsInOneTileMatchReference) {
+  // 19 rows in one tile: two whole work-groups of 8 rows and a padded one on the NDRange entry, whose rows meet masked
+  // pixels, run starts and ends at different columns: a row masked at its start, one cut in three runs, one masked
+  // throughout, one whose run starts at its last pixel.
+  auto rows = testing::kernel_test_rows(19);
+  const auto code = [&](int row, int u) -> std::uint8_t& {
+    return rows.runs[static_cast<std::size_t>(row) * static_cast<std::size_t>(rows.width) + u];
+  };
+  for (int u = 0; u < 3; ++u) code(9, u) = RF_RUN_MASKED;
+  code(9, 3) = RF_RUN_START;
+  code(12, 8) = RF_RUN_START;
+  code(12, 15) = RF_RUN_MASKED;
+  code(12, 16) = RF_RUN_START;
+  for (int u = 0; u < rows.width; ++u) code(17, u) = RF_RUN_MASKED;
+  code(18, rows.width - 1) = RF_RUN_START;
+  const IntegrationOptions passes{3};
+  const auto integrated = integrate_rows_reference(rows, passes, 0, rows.height);
+  expect_close(integrate_rows_opencl(devices_.front(), programs_, GetParam(), rows, passes, 0, rows.height),
+               integrated);
+  const FusionOptions options;
+  expect_close(fuse_rows_opencl(devices_.front(), programs_, GetParam(), rows, integrated, options, 0, rows.height),
+               fuse_rows_reference(rows, integrated, options, 0, rows.height));
 }
 
 TEST(RowSolversKernelWidth, SingleEntriesRefuseRowsWiderThanTheirBuffers) {

@@ -13,6 +13,7 @@
 #include "host/core/errors.h"
 #include "host/transport/compute_transport.h"
 #include "host/transport/spmv.h"
+#include "kernels/common/lanes.h"
 #include "kernels/transport/compression.h"
 #include "kernels/transport/gray_decode.h"
 #include "tests/transport/same_transport.h"
@@ -30,8 +31,8 @@ constexpr KernelEntry kEntries[] = {KernelEntry::kNdRange, KernelEntry::kSingleW
 class TransportKernelTest : public ::testing::Test {
  protected:
   // Decode and compression of the tiny capture with dot spacing s and K entries, both entries on every device,
-  // equal the C++ reference (same_transport.h).
-  void expect_kernels_match_reference(int spacing, int k);
+  // equal the C++ reference (same_transport.h). camera_width > 0 crops the frames to that many columns.
+  void expect_kernels_match_reference(int spacing, int k, int camera_width = 0);
   cl::ProgramCache programs_;
   std::vector<cl::DeviceContext> devices_ = cl::open_devices("");
 };
@@ -43,6 +44,12 @@ TEST_F(TransportKernelTest, DecodeAndCompressMatchReferenceWithDotGrid) {
     SCOPED_TRACE("dot spacing " + std::to_string(spacing));
     expect_kernels_match_reference(spacing, 4);
   }
+}
+
+TEST_F(TransportKernelTest, PixelsPastTheLastWholeGroupOfLanesMatchReference) {
+  // 23 x 20 camera pixels: 460 = 57 groups of RF_LANES (8) and 4 more, which the NDRange compression takes one by one.
+  static_assert(460 % RF_LANES != 0, "the test needs a partial group of lanes");
+  expect_kernels_match_reference(5, 4, 23);
 }
 
 TEST_F(TransportKernelTest, AnotherKThanTheParametersHeadersAlsoMatches) {
@@ -60,8 +67,11 @@ TEST_F(TransportKernelTest, SpacingsOutsideTheKernelsAreRefusedNamingThem) {
   }
 }
 
-void TransportKernelTest::expect_kernels_match_reference(int spacing, int k) {
-  const auto capture = tiny_capture(spacing);
+void TransportKernelTest::expect_kernels_match_reference(int spacing, int k, int camera_width) {
+  auto capture = tiny_capture(spacing);
+  if (camera_width > 0) {
+    for (auto& frame : capture.frames) frame = frame.colRange(0, camera_width).clone();
+  }
   const auto linear = testing::linearize(capture.frames);
   const auto setup = testing::setup_for(linear, capture.scene.projector_size, spacing, k);
   auto reference = make_reference_accumulator(setup);
