@@ -5,18 +5,12 @@
 #include <cmath>
 #include <limits>
 
+#include "host/core/parallel_rows.h"
+
 namespace rfrecon::depth {
 
 namespace {
 constexpr float kNoValue = std::numeric_limits<float>::quiet_NaN();
-
-// Runs row(y) for every y in [0, rows) on every core; each row writes only its own pixels.
-template <typename Row>
-void for_each_row(int rows, const Row& row) {
-  cv::parallel_for_(cv::Range(0, rows), [&](const cv::Range& range) {
-    for (int y = range.start; y < range.end; ++y) row(y);
-  });
-}
 
 bool finite_point(const cv::Vec3f& p) { return std::isfinite(p[0]); }
 

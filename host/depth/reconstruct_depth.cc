@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include "host/core/errors.h"
+#include "host/core/parallel_rows.h"
 #include "host/core/stage_clock.h"
 #include "host/depth/camera_grid.h"
 #include "host/sched/scheduler.h"
@@ -30,17 +31,15 @@ void fill_confidence(outputs::Reconstruction& maps, const cv::Mat& z_rect_mm,
                      const CameraGridTriangulation& triangulation, const RfRectifiedRig& rig,
                      const DepthOptions& options) {
   const float depth_noise_scale = options.fusion.sigma_disparity_px / (rig.f * std::abs(rig.b));
-  cv::parallel_for_(cv::Range(0, maps.depth_mm.rows), [&](const cv::Range& rows) {
-    for (int y = rows.start; y < rows.end; ++y) {
-      for (int x = 0; x < maps.depth_mm.cols; ++x) {
-        const float z = z_rect_mm.at<float>(y, x);
-        if (!(z > 0.0f)) continue;
-        float confidence = agreement(triangulation.epipolar_px.at<float>(y, x), 0.5f);
-        if (options.method != Method::kTriangulate) {
-          confidence *= agreement(z - triangulation.z_rect_mm.at<float>(y, x), 3.0f * z * z * depth_noise_scale);
-        }
-        maps.confidence.at<float>(y, x) = confidence;
+  for_each_row(maps.depth_mm.rows, [&](int y) {
+    for (int x = 0; x < maps.depth_mm.cols; ++x) {
+      const float z = z_rect_mm.at<float>(y, x);
+      if (!(z > 0.0f)) continue;
+      float confidence = agreement(triangulation.epipolar_px.at<float>(y, x), 0.5f);
+      if (options.method != Method::kTriangulate) {
+        confidence *= agreement(z - triangulation.z_rect_mm.at<float>(y, x), 3.0f * z * z * depth_noise_scale);
       }
+      maps.confidence.at<float>(y, x) = confidence;
     }
   });
 }

@@ -15,6 +15,7 @@
 #include "calib/undistort_points.h"
 #include "host/core/errors.h"
 #include "host/core/image_file.h"
+#include "host/core/parallel_rows.h"
 #include "host/depth/bilinear.h"
 #include "host/depth/solid_angle.h"
 
@@ -40,19 +41,6 @@ bool interpolate_grid(const cv::Mat& grid, cv::Point2f p, cv::Point2f& out) {
     (axis == 0 ? out.x : out.y) = static_cast<float>(upper + ty * (lower - upper));
   }
   return true;
-}
-
-// Runs count_row(y) for every row y in [0, rows) on every core (each row writes only its own pixels) and returns the
-// sum of their counts.
-template <typename CountRow>
-int count_over_rows(int rows, const CountRow& count_row) {
-  std::atomic<int> total{0};
-  cv::parallel_for_(cv::Range(0, rows), [&](const cv::Range& range) {
-    int count = 0;
-    for (int y = range.start; y < range.end; ++y) count += count_row(y);
-    total += count;
-  });
-  return total;
 }
 
 // A pixel on an occlusion boundary sees both surfaces: its spot mixes theirs and it triangulates onto either, whatever
@@ -250,15 +238,13 @@ RectifiedRows rectify_rows(const transport::CompressedTransport& transport, cons
   // ODE (no correspondence, saturated, dark) become NaN so that no interpolated value mixes them in.
   cv::Mat e_cam(camera_size, CV_32F, cv::Scalar(kNaN)), e_proj;
   const int k = transport.k();
-  cv::parallel_for_(cv::Range(0, camera_size.height), [&](const cv::Range& range) {
-    for (int y = range.start; y < range.end; ++y) {
-      for (int x = 0; x < camera_size.width; ++x) {
-        const std::size_t c = static_cast<std::size_t>(y) * static_cast<std::size_t>(camera_size.width) + x;
-        const float* weights = &transport.weights[c * static_cast<std::size_t>(k)];
-        const bool saturated = *std::max_element(weights, weights + k) >= options.saturation;
-        if (saturated || !(primal[c] > 0.0f) || std::isnan(triangulation.z_rect_mm.at<float>(y, x))) continue;
-        e_cam.at<float>(y, x) = primal[c] / rectification.omega_cam.at<float>(y, x);
-      }
+  for_each_row(camera_size.height, [&](int y) {
+    for (int x = 0; x < camera_size.width; ++x) {
+      const std::size_t c = static_cast<std::size_t>(y) * static_cast<std::size_t>(camera_size.width) + x;
+      const float* weights = &transport.weights[c * static_cast<std::size_t>(k)];
+      const bool saturated = *std::max_element(weights, weights + k) >= options.saturation;
+      if (saturated || !(primal[c] > 0.0f) || std::isnan(triangulation.z_rect_mm.at<float>(y, x))) continue;
+      e_cam.at<float>(y, x) = primal[c] / rectification.omega_cam.at<float>(y, x);
     }
   });
   cv::divide(cv::max(cv::Mat(projector_size, CV_32F, const_cast<float*>(dual.data())), 0.0f), rectification.omega_proj,
