@@ -72,7 +72,8 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
                            std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
   check_request(transport, options, devices);
   StageClock clock;
-  const Rectification rectification = clock.time("rig geometry", [&] { return depth_rectification(rig, rig_name); });
+  const Rectification rectification = clock.time(
+      "rig geometry", [&] { return depth_rectification(rig, rig_name, options.method != Method::kTriangulate); });
   DepthRun run = reconstruct_depth(transport, rig, rectification, rig_name, options, devices, programs);
   nlohmann::json timings = clock.timings();
   for (const auto& timing : run.summary["timings"]) timings.push_back(timing);

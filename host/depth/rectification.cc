@@ -107,7 +107,7 @@ void reject_edge_pixels(CameraGridTriangulation& result, const transport::Compre
 
 }  // namespace
 
-Rectification depth_rectification(const calib::StereoRig& rig, const std::string& rig_name) {
+Rectification depth_rectification(const calib::StereoRig& rig, const std::string& rig_name, bool with_row_lookups) {
   calib::RowRectification rows;
   try {
     rows = calib::rectify_rig(rig);
@@ -145,6 +145,7 @@ Rectification depth_rectification(const calib::StereoRig& rig, const std::string
                               rectification.P2, calib::undistort_criteria());
   rectification.proj_grid = cv::Mat(rig.projector_size + cv::Size(2, 2), CV_32FC2);
   std::copy(proj_grid.begin(), proj_grid.end(), rectification.proj_grid.begin<cv::Vec2f>());
+  if (!with_row_lookups) return rectification;
   rectification.omega_cam = pixel_solid_angles(rig.camera_matrix, rig.dist_coeffs, camera_size);
   rectification.omega_proj = pixel_solid_angles(rig.projector_matrix, rig.projector_dist_coeffs, rig.projector_size);
   cv::initUndistortRectifyMap(rig.camera_matrix, rig.dist_coeffs, rectification.R1, rectification.P1,
@@ -233,6 +234,9 @@ RectifiedRows rectify_rows(const transport::CompressedTransport& transport, cons
   const cv::Size camera_size = transport.setup.camera_size, projector_size = transport.setup.projector_size;
   if (primal.size() != transport.camera_pixels() || dual.size() != transport.projector_pixels()) {
     throw std::invalid_argument("rectify_rows: primal or dual image of the wrong size");
+  }
+  if (rectification.omega_cam.empty()) {
+    throw std::invalid_argument("rectify_rows: the rectification was computed without its row lookups");
   }
   // Radiance-like images: primal and dual divided by their pixels' solid angles. Camera pixels that cannot carry the
   // ODE (no correspondence, saturated, dark) become NaN so that no interpolated value mixes them in.

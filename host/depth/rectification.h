@@ -25,23 +25,26 @@ struct RectificationOptions {
 // coarser than its pixels. With it, the per-pixel lookups that depend on the rig alone: computed once per
 // calibration, they serve every scan made with it (docs/performance.md, "Rig geometry").
 struct Rectification {
-  RfRectifiedRig rig{};          // f, principal points (px), projector offset b (mm, > 0)
-  cv::Size camera_size;          // rectified camera image
-  int projector_width = 0;       // rectified projector image width (its rows are the camera's)
-  cv::Mat R1, R2;                // 3x3 CV_64F rotations: rectified from camera, rectified from projector
-  cv::Mat P1, P2;                // 3x4 CV_64F projection matrices of the rectified camera and projector
-  cv::Mat rect_cam;              // CV_32FC2, camera size: rectified camera position (u, v) of each camera pixel centre
-  cv::Mat omega_cam;             // CV_32F, camera size: solid angle of each camera pixel (host/depth/solid_angle.h)
-  cv::Mat omega_proj;            // CV_32F, projector size: the same for each projector pixel
-  cv::Mat proj_grid;             // CV_32FC2, projector size + 2: rectified projector position of each projector
-                                 // point (x - 1, y - 1), pixel centres and a pixel of margin around the image
-  cv::Mat cam_map_x, cam_map_y;  // CV_32F, rectified camera size: camera pixel seen at each rectified pixel
+  RfRectifiedRig rig{};     // f, principal points (px), projector offset b (mm, > 0)
+  cv::Size camera_size;     // rectified camera image
+  int projector_width = 0;  // rectified projector image width (its rows are the camera's)
+  cv::Mat R1, R2;           // 3x3 CV_64F rotations: rectified from camera, rectified from projector
+  cv::Mat P1, P2;           // 3x4 CV_64F projection matrices of the rectified camera and projector
+  cv::Mat rect_cam;         // CV_32FC2, camera size: rectified camera position (u, v) of each camera pixel centre
+  cv::Mat proj_grid;        // CV_32FC2, projector size + 2: rectified projector position of each projector
+                            // point (x - 1, y - 1), pixel centres and a pixel of margin around the image
+  // Row lookups, for rectify_rows (the integration and the fusion; empty where not asked for):
+  cv::Mat omega_cam;               // CV_32F, camera size: solid angle of each camera pixel (host/depth/solid_angle.h)
+  cv::Mat omega_proj;              // CV_32F, projector size: the same for each projector pixel
+  cv::Mat cam_map_x, cam_map_y;    // CV_32F, rectified camera size: camera pixel seen at each rectified pixel
   cv::Mat proj_map_x, proj_map_y;  // CV_32F, rectified projector size: the same for the projector
 };
 
 // Throws InputError naming `rig_name` and the key when the rig cannot be rectified into rows (degenerate baseline,
-// devices facing away or at a grazing angle to each other).
-Rectification depth_rectification(const calib::StereoRig& rig, const std::string& rig_name);
+// devices facing away or at a grazing angle to each other). with_row_lookups = false leaves the row lookups empty
+// (triangulation alone needs none).
+Rectification depth_rectification(const calib::StereoRig& rig, const std::string& rig_name,
+                                  bool with_row_lookups = true);
 
 // Rectified projector positions of projector points (pixels, distorted): interpolated in rectification.proj_grid where
 // they lie on it, within 2.5e-4 px of the exact undistortion on a strong lens (tests/depth/rectification_test.cc);
@@ -66,7 +69,8 @@ CameraGridTriangulation triangulate_camera_grid(const transport::CompressedTrans
                                                 const calib::StereoRig& rig, const Rectification& rectification,
                                                 const RectificationOptions& options);
 
-// Rectified rows with e_cam, e_proj and z_tri filled (runs left empty: see host/depth/row_segmentation.h).
+// Throws std::invalid_argument when `rectification` has no row lookups. Rectified rows with e_cam, e_proj and z_tri
+// filled (runs left empty: see host/depth/row_segmentation.h).
 // primal = T 1 (camera pixels), dual = T^T 1 (projector pixels).
 RectifiedRows rectify_rows(const transport::CompressedTransport& transport, const std::vector<float>& primal,
                            const std::vector<float>& dual, const Rectification& rectification,
