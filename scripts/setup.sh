@@ -30,6 +30,8 @@ else
 fi
 
 if [[ "${1:-}" != "--no-build" ]]; then
-  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+  # A unity build (8 sources of a target compiled as one): 8.4 min from scratch on 2 cores against 11.9 min
+  # (docs/building.md). For day-to-day work on a few files, configure a build directory with -DCMAKE_UNITY_BUILD=OFF.
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON
   cmake --build build -j"$(nproc)"
 fi

@@ -39,7 +39,8 @@ cv::Mat camera_reading(const cv::Mat& linear, const CaptureSettings& s, std::uin
       // Shot noise: Gaussian approximation of Poisson(signal * full_well) electrons.
       if (s.full_well_electrons > 0.0) signal += std::sqrt(signal / s.full_well_electrons) * normal(rng);
       if (s.read_noise_dn > 0.0) signal += s.read_noise_dn / span * normal(rng);
-      const double response = std::pow(std::clamp(signal, 0.0, 1.0), 1.0 / s.response_gamma);
+      const double clamped = std::clamp(signal, 0.0, 1.0);
+      const double response = s.response_gamma == 1.0 ? clamped : std::pow(clamped, 1.0 / s.response_gamma);
       const double dn = std::clamp(std::round(s.black_level + span * response), 0.0, full_scale);
       if (s.bit_depth == 8) {
         raw.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(dn);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <optional>
 #include <random>
+#include <stdexcept>
 #include <thread>
 
 namespace rfrecon::sim {
@@ -161,32 +162,57 @@ std::vector<Row> blur_camera(const std::vector<Row>& rows, cv::Size camera, cons
   return out;
 }
 
+// The undistorted normalised coordinates of camera row y's rays: per pixel, n x n sub-pixel rays, then its centre.
+std::vector<Eigen::Vector2d> row_rays(const Device& camera, const RenderOptions& options, int y) {
+  const int n = options.supersample, per_pixel = n * n + 1;
+  std::vector<cv::Point2d> pixels;
+  pixels.reserve(static_cast<std::size_t>(camera.size.width) * per_pixel);
+  std::uniform_real_distribution<double> in_cell(0.0, 1.0);
+  for (int x = 0; x < camera.size.width; ++x) {
+    // A grid of cells regularly placed aliases straight edges to 1/N px; a point drawn in each cell does not.
+    std::mt19937_64 placement(options.seed * 0xD1B54A32D192ED03ULL + static_cast<unsigned long long>(y) * 65536ULL +
+                              static_cast<unsigned long long>(x));
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const double u = options.jitter ? in_cell(placement) : 0.5;
+        const double v = options.jitter ? in_cell(placement) : 0.5;
+        pixels.emplace_back(x - 0.5 + (i + u) / n, y - 0.5 + (j + v) / n);
+      }
+    }
+    pixels.emplace_back(x, y);
+  }
+  return undistort_pixels(camera, pixels);
+}
+
+// Runs work(y) for every camera row on `threads` threads (0: every core), rows taken in turn.
+template <typename Work>
+void for_each_camera_row(int height, int threads, const Work& work) {
+  std::atomic<int> next_row{0};
+  const auto run = [&] {
+    for (int y = next_row++; y < height; y = next_row++) work(y);
+  };
+  const int count = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  std::vector<std::thread> pool;
+  for (int i = 1; i < count; ++i) pool.emplace_back(run);
+  run();
+  for (auto& thread : pool) thread.join();
+}
+
 class RowRenderer {
  public:
   RowRenderer(const Scene& scene, const RenderOptions& options)
       : scene_(scene), options_(options), tracer_(scene), n_(options.supersample) {}
 
-  // Renders camera row y into rows[y * W ...] and the ground truth of that row.
-  void render_row(int y, std::vector<Row>& rows, truth::TruthMaps& truth) const {
+  // Renders camera row y into rows[y * W ...] and the ground truth of that row, tracing `rays` when given (all rows'
+  // rays, camera_rays), else the row's rays computed here.
+  void render_row(int y, const CameraRays* rays, std::vector<Row>& rows, truth::TruthMaps& truth) const {
     const cv::Size camera = scene_.camera.size;
-    const int per_pixel = n_ * n_ + 1;  // sub-pixel samples, then the pixel centre
-    std::vector<cv::Point2d> pixels;
-    pixels.reserve(static_cast<std::size_t>(camera.width) * per_pixel);
-    std::uniform_real_distribution<double> in_cell(0.0, 1.0);
-    for (int x = 0; x < camera.width; ++x) {
-      // A grid of cells regularly placed aliases straight edges to 1/N px; a point drawn in each cell does not.
-      std::mt19937_64 placement(options_.seed * 0xD1B54A32D192ED03ULL + static_cast<unsigned long long>(y) * 65536ULL +
-                                static_cast<unsigned long long>(x));
-      for (int j = 0; j < n_; ++j) {
-        for (int i = 0; i < n_; ++i) {
-          const double u = options_.jitter ? in_cell(placement) : 0.5;
-          const double v = options_.jitter ? in_cell(placement) : 0.5;
-          pixels.emplace_back(x - 0.5 + (i + u) / n_, y - 0.5 + (j + v) / n_);
-        }
-      }
-      pixels.emplace_back(x, y);
-    }
-    const auto normalized = undistort_pixels(scene_.camera, pixels);
+    const int per_pixel = n_ * n_ + 1;
+    std::vector<Eigen::Vector2d> computed;
+    if (rays == nullptr) computed = row_rays(scene_.camera, options_, y);
+    const Eigen::Vector2d* normalized =
+        rays != nullptr ? rays->normalized.data() + static_cast<std::size_t>(y) * camera.width * per_pixel
+                        : computed.data();
     for (int x = 0; x < camera.width; ++x) {
       const int c = y * camera.width + x;
       std::mt19937_64 rng(options_.seed * 0x9E3779B97F4A7C15ULL + static_cast<unsigned long long>(c));
@@ -322,31 +348,40 @@ TransportMatrix assemble(const std::vector<Row>& rows, int columns) {
 }
 }  // namespace
 
-Transport render_transport(const Scene& scene, const RenderOptions& options, Progress* progress) {
+CameraRays camera_rays(const Device& camera, const RenderOptions& options) {
+  CameraRays rays;
+  const int per_pixel = options.supersample * options.supersample + 1;
+  const auto row_size = static_cast<std::size_t>(camera.size.width) * per_pixel;
+  rays.normalized.resize(row_size * static_cast<std::size_t>(camera.size.height));
+  for_each_camera_row(camera.size.height, options.threads, [&](int y) {
+    const auto row = row_rays(camera, options, y);
+    std::copy(row.begin(), row.end(), rays.normalized.begin() + static_cast<std::ptrdiff_t>(row_size * y));
+  });
+  return rays;
+}
+
+Transport render_transport(const Scene& scene, const RenderOptions& options, const CameraRays* rays,
+                           Progress* progress) {
   const cv::Size camera = scene.camera.size;
+  const int per_pixel = options.supersample * options.supersample + 1;
+  if (rays != nullptr &&
+      rays->normalized.size() != static_cast<std::size_t>(camera.area()) * static_cast<std::size_t>(per_pixel)) {
+    throw std::invalid_argument("render_transport: the camera rays are of another camera size or supersampling");
+  }
   std::vector<Row> rows(static_cast<std::size_t>(camera.area()));
   Transport out;
   out.truth = empty_truth(camera);
   const RowRenderer renderer(scene, options);
   const std::vector<double> projector_kernel =
       options.projector_defocus_px > 0.0 ? gaussian_kernel(options.projector_defocus_px) : std::vector<double>{};
-  std::atomic<int> next_row{0};
-  const auto work = [&] {
-    for (int y = next_row++; y < camera.height; y = next_row++) {
-      renderer.render_row(y, rows, out.truth);
-      if (!projector_kernel.empty()) {
-        for (int x = 0; x < camera.width; ++x)
-          blur_projector(rows[y * camera.width + x], scene.projector.size, projector_kernel);
-      }
-      if (progress != nullptr) progress->advance();
+  for_each_camera_row(camera.height, options.threads, [&](int y) {
+    renderer.render_row(y, rays, rows, out.truth);
+    if (!projector_kernel.empty()) {
+      for (int x = 0; x < camera.width; ++x)
+        blur_projector(rows[y * camera.width + x], scene.projector.size, projector_kernel);
     }
-  };
-  const int threads =
-      options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  std::vector<std::thread> pool;
-  for (int i = 1; i < threads; ++i) pool.emplace_back(work);
-  work();
-  for (auto& thread : pool) thread.join();
+    if (progress != nullptr) progress->advance();
+  });
   if (options.camera_defocus_px > 0.0) rows = blur_camera(rows, camera, gaussian_kernel(options.camera_defocus_px));
   out.T = assemble(rows, scene.projector.size.area());
   return out;

@@ -20,9 +20,20 @@ struct Transport {
   truth::TruthMaps truth;
 };
 
-// Renders T and the ground truth with options.threads threads; deterministic for given scene and options.
-// `progress` (optional) advances by one per camera row.
-Transport render_transport(const Scene& scene, const RenderOptions& options, Progress* progress = nullptr);
+// The rays render_transport traces: the undistorted normalised coordinates of every camera pixel's n x n sub-pixel
+// rays, then its centre (n = options.supersample), row by row. They depend on the camera and the supersampling only,
+// without jitter (with it, on the seed too): views of a scene in front of one camera can share them, and their
+// undistortion is most of the rendering's time.
+struct CameraRays {
+  std::vector<Eigen::Vector2d> normalized;
+};
+CameraRays camera_rays(const Device& camera, const RenderOptions& options);
+
+// Renders T and the ground truth with options.threads threads; deterministic for given scene and options. `rays`
+// (optional) are camera_rays(scene.camera, options), computed here row by row when absent; rays of another camera
+// size or supersampling throw std::invalid_argument. `progress` (optional) advances by one per camera row.
+Transport render_transport(const Scene& scene, const RenderOptions& options, const CameraRays* rays = nullptr,
+                           Progress* progress = nullptr);
 
 // Convenience: scene.render as the options.
 inline Transport render_transport(const Scene& scene) { return render_transport(scene, scene.render); }

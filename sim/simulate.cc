@@ -2,6 +2,7 @@
 #include "sim/simulate.h"
 
 #include <cstdio>
+#include <optional>
 #include <thread>
 
 #include <spdlog/spdlog.h>
@@ -50,15 +51,15 @@ std::string view_name(std::size_t view) {
   return name;
 }
 
-// Renders one view and writes its capture and ground-truth maps.
-void render_view(const Scene& scene, int threads, const std::string& label, const fs::path& capture_dir,
-                 const fs::path& truth_dir) {
+// Renders one view and writes its capture and ground-truth maps; `rays` as for render_transport.
+void render_view(const Scene& scene, int threads, const CameraRays* rays, const std::string& label,
+                 const fs::path& capture_dir, const fs::path& truth_dir) {
   RenderOptions render = scene.render;
   render.threads = threads;
   Transport transport;
   {
     Progress progress(label + ": transport", static_cast<std::size_t>(scene.camera.size.height), "rows");
-    transport = render_transport(scene, render, &progress);
+    transport = render_transport(scene, render, rays, &progress);
   }
   spdlog::debug("{}: T is {}x{} with {} non-zeros", label, transport.T.rows(), transport.T.cols(),
                 transport.T.nonZeros());
@@ -79,15 +80,23 @@ void simulate(const Scene& scene, const fs::path& out_dir, const SimulateOptions
   StagingDirectory staging(out_dir, options.force);
   const fs::path root = staging.path();
   if (scene.views.empty()) {
-    render_view(scene, threads, scene.name, root / "capture", root / "truth");
+    render_view(scene, threads, nullptr, scene.name, root / "capture", root / "truth");
     calib::write_rig(true_rig(scene), root / "truth" / "rig.yaml");
   } else {
+    // The views move objects in front of one camera: without jitter they trace the same rays, undistorted once.
+    std::optional<CameraRays> rays;
+    if (!scene.render.jitter) {
+      RenderOptions options = scene.render;
+      options.threads = threads;
+      rays = camera_rays(scene.camera, options);
+    }
     json poses = json::array();
     for (std::size_t v = 0; v < scene.views.size(); ++v) {
       Scene view = scene_for_view(scene, v);
       view.render.seed = scene.render.seed * 1000003ULL + v;  // independent noise per view
       const std::string name = view_name(v);
-      render_view(view, threads, scene.name + " " + name, root / "capture" / name, root / "truth" / name);
+      render_view(view, threads, rays ? &*rays : nullptr, scene.name + " " + name, root / "capture" / name,
+                  root / "truth" / name);
       json pose = board_corners(view);
       if (!pose.is_null()) pose["view"] = name;
       poses.push_back(pose);

@@ -10,12 +10,10 @@
 #define RF_SQRT sqrt
 #define RF_FABS fabs
 #define RF_FMA fma
-// In the row loops of the depth kernels: the NDRange entries' work-items, one row each, advance in step, a barrier per
-// iteration, so that PoCL runs the work-group's rows side by side within each iteration and their slope chains
-// overlap (docs/performance.md, "Row solvers"). Every work-item of a group reaches each barrier: the host pads the
-// rows to whole work-groups. Nothing in C++.
-#define RF_ROWS_IN_STEP() barrier(CLK_LOCAL_MEM_FENCE)
+#define RF_MIN_INT min
+#define RF_MAX_INT max
 #else
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #define RF_GLOBAL
@@ -23,7 +21,8 @@
 #define RF_SQRT std::sqrt
 #define RF_FABS std::fabs
 #define RF_FMA std::fma
-#define RF_ROWS_IN_STEP()
+#define RF_MIN_INT std::min<int>
+#define RF_MAX_INT std::max<int>
 #endif
 
 #endif  // RFRECON_KERNELS_COMMON_PORTABLE_H

@@ -1,7 +1,8 @@
 // Fusion of triangulated positions and reciprocity slopes on rectified rows (kernels/depth/row_fusion.h), over the
 // row tile [first_row, first_row + rows). z holds the starting depth on entry (the integrated rows) and the fused
 // depth on return. Layout as in integrate.cl.
-//   fuse_rows_ndrange: one work-item per row; c and d are its scratch (Thomas algorithm), of z's size.
+//   fuse_rows_ndrange: one work-item per RF_LANES rows, as integrate_rows_ndrange; c and d are their scratch (Thomas
+//                      algorithm), of z's size and layout.
 //   fuse_rows_single:  one work-item; RF_FUSE_INTERLEAVE rows at a time in on-chip buffers (scratch included), their
 //                      pixels interleaved in each sweep (kernels/depth/row_interleave.h); rows of at most
 //                      RF_MAX_ROW_WIDTH.
@@ -18,13 +19,16 @@ __kernel void fuse_rows_ndrange(float f, float cx_cam, float cx_proj, float cy, 
                                 __global const float* restrict e_proj, __global const float* restrict z_tri,
                                 __global const uchar* restrict runs, __global float* restrict z,
                                 __global float* restrict c, __global float* restrict d) {
-  const int r = (int)get_global_id(0);
-  if (r >= rows) return;
+  // The host launches rows / RF_LANES work-items, the tile padded with masked rows to whole groups of lanes.
+  (void)rows;
+  const int group = (int)get_global_id(0);
   const RfRectifiedRig rig = {f, cx_cam, cx_proj, cy, b};
-  const float beta = ((float)(first_row + r) - cy) / f;
-  const size_t row = (size_t)r * (size_t)width;
-  rf_fuse_row(rig, beta, width, proj_width, iterations, sigma_disparity_px, sigma_step_mm, e_cam + row,
-              e_proj + (size_t)r * (size_t)proj_width, z_tri + row, runs + row, z + row, c + row, d + row);
+  const int8 row = (int8)(first_row + group * RF_LANES) + (int8)(0, 1, 2, 3, 4, 5, 6, 7);
+  const float8 beta = (convert_float8(row) - cy) / f;
+  const size_t at = (size_t)group * RF_LANES * (size_t)width;
+  RF_LANES_FN(rf_fuse_row)
+  (rig, beta, width, proj_width, iterations, rf_fusion_weights(rig, sigma_disparity_px, sigma_step_mm), e_cam + at,
+   e_proj + (size_t)group * RF_LANES * (size_t)proj_width, z_tri + at, runs + at, z + at, c + at, d + at);
 }
 
 RF_SINGLE_TASK

@@ -1,8 +1,8 @@
 // Reciprocity integration of rectified rows (kernels/depth/row_integration.h), over the row tile
 // [first_row, first_row + rows). Buffers hold the tile's rows only: e_cam, z_tri, runs and z are rows x width,
 // e_proj is rows x proj_width.
-//   integrate_rows_ndrange: one work-item per row, the work-group's rows in step (RF_ROWS_IN_STEP); the host pads the
-//                           tile to whole work-groups with masked rows.
+//   integrate_rows_ndrange: one work-item per RF_LANES rows, one per vector lane, in the interleaved layout of
+//                           kernels/depth/row_lanes.h (the host interleaves them, padding the tile with masked rows).
 //   integrate_rows_single:  one work-item; RF_INTEGRATE_INTERLEAVE rows at a time in on-chip buffers, advancing
 //                           together one RK4 slope each in turn (kernels/depth/row_interleave.h), so that each slope
 //                           depends on the one RF_INTEGRATE_INTERLEAVE loop iterations earlier; rows of at most
@@ -20,15 +20,16 @@ __kernel void integrate_rows_ndrange(float f, float cx_cam, float cx_proj, float
                                      int width, int proj_width, int passes, __global const float* restrict e_cam,
                                      __global const float* restrict e_proj, __global const float* restrict z_tri,
                                      __global const uchar* restrict runs, __global float* restrict z) {
-  // The host launches exactly `rows` work-items, padded to whole work-groups: no early exit, since every work-item
-  // must reach each barrier of the row loop (RF_ROWS_IN_STEP).
+  // The host launches rows / RF_LANES work-items, the tile padded with masked rows to whole groups of lanes.
   (void)rows;
-  const int r = (int)get_global_id(0);
+  const int group = (int)get_global_id(0);
   const RfRectifiedRig rig = {f, cx_cam, cx_proj, cy, b};
-  const float beta = ((float)(first_row + r) - cy) / f;
-  const size_t row = (size_t)r * (size_t)width;
-  rf_integrate_row(rig, beta, width, proj_width, passes, e_cam + row, e_proj + (size_t)r * (size_t)proj_width,
-                   z_tri + row, runs + row, z + row);
+  const int8 row = (int8)(first_row + group * RF_LANES) + (int8)(0, 1, 2, 3, 4, 5, 6, 7);
+  const float8 beta = (convert_float8(row) - cy) / f;
+  const size_t at = (size_t)group * RF_LANES * (size_t)width;
+  RF_LANES_FN(rf_integrate_row)
+  (rig, beta, width, proj_width, passes, e_cam + at, e_proj + (size_t)group * RF_LANES * (size_t)proj_width, z_tri + at,
+   runs + at, z + at);
 }
 
 RF_SINGLE_TASK

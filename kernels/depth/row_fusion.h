@@ -33,79 +33,37 @@ RF_INLINE RfFusionWeights rf_fusion_weights(RfRectifiedRig rig, float sigma_disp
   return weights;
 }
 
-// The forward sweep's state at the previous pixel of the run.
+// The forward sweep's state at the previous pixel of the run (per kind of row, depth/row_space.h): mu, the weight of
+// the link from the previous pixel to this one (0 where it has none), a its linearised slope 1 + h', r its residual,
+// c and d the Thomas forward sweep's coefficients at the previous pixel.
+#define RF_SWEEP_STATE_FIELDS(real) \
+  real mu;                          \
+  real a;                           \
+  real r;                           \
+  real c;                           \
+  real d;
 typedef struct {  // NOLINT(modernize-use-using): shared with OpenCL C, which has no `using`
-  float mu;       // weight of the link from the previous pixel to this one (0 where it has none)
-  float a;        // its linearised slope 1 + h'
-  float r;        // its residual
-  float c, d;     // the Thomas forward sweep's coefficients at the previous pixel
+  RF_SWEEP_STATE_FIELDS(float)
 } RfSweepState;
-
-RF_INLINE void rf_sweep_state_init(RfSweepState* state) {
-  state->mu = 0.0f;
-  state->a = 0.0f;
-  state->r = 0.0f;
-  state->c = 0.0f;
-  state->d = 0.0f;
-}
-
-// Run structure at pixel u (not masked) from its code and its neighbours' (prev_code for u - 1, next_code for
-// u + 1; any value where the neighbour is outside the row): a run starts after a masked pixel or at RF_RUN_START,
-// and ends before a pixel that does not continue it.
-RF_INLINE int rf_fusion_run_starts(int u, unsigned int code, unsigned int prev_code) {
-  return u == 0 || prev_code == RF_RUN_MASKED || code != RF_RUN_CONTINUE;
-}
-RF_INLINE int rf_fusion_run_ends(int u, int width, unsigned int next_code) {
-  return u + 1 >= width || next_code != RF_RUN_CONTINUE;
-}
-
-// The backward sweep at a pixel: the update of z there, from the one at the next pixel of the run.
-RF_INLINE float rf_fuse_backward(int run_ends, float c, float d, float next_update) {
-  return run_ends ? d : d - c * next_update;
-}
-
-#define RF_ROW_SPACE RF_GLOBAL
-#define RF_ROW_FN(name) name
-#include "depth/row_fusion_rows.h"
-#undef RF_ROW_SPACE
-#undef RF_ROW_FN
 #ifdef __OPENCL_VERSION__
-#define RF_ROW_SPACE
-#define RF_ROW_FN(name) RF_ON_CHIP(name)
-#include "depth/row_fusion_rows.h"
-#undef RF_ROW_SPACE
-#undef RF_ROW_FN
+typedef struct {
+  RF_SWEEP_STATE_FIELDS(RF_LANES_REAL)
+} RF_LANES_FN(RfSweepState);
 #endif
 
-// The whole row: `iterations` linearised solves of every run. z_row holds the start on entry (finite wherever the
-// run code is not RF_RUN_MASKED) and the fused depth on return. c_row and d_row are scratch of the row's width.
-RF_INLINE void rf_fuse_row(RfRectifiedRig rig, float beta, int width, int proj_width, int iterations,
-                           float sigma_disparity_px, float sigma_step_mm, RF_GLOBAL const float* e_cam_row,
-                           RF_GLOBAL const float* e_proj_row, RF_GLOBAL const float* z_tri_row,
-                           RF_GLOBAL const unsigned char* run_row, RF_GLOBAL float* z_row, RF_GLOBAL float* c_row,
-                           RF_GLOBAL float* d_row) {
-  const RfFusionWeights weights = rf_fusion_weights(rig, sigma_disparity_px, sigma_step_mm);
-  for (int iteration = 0; iteration < iterations; ++iteration) {
-    RfSweepState state;
-    rf_sweep_state_init(&state);
-    for (int u = 0; u < width; ++u) {
-      const unsigned int code = run_row[u];
-      if (code == RF_RUN_MASKED) continue;
-      if (rf_fusion_run_starts(u, code, u > 0 ? run_row[u - 1] : 0u)) rf_sweep_state_init(&state);
-      const int run_ends = rf_fusion_run_ends(u, width, u + 1 < width ? run_row[u + 1] : 0u);
-      rf_fuse_forward(rig, beta, u, run_ends, proj_width, weights, e_cam_row, e_proj_row, z_row[u],
-                      run_ends ? 0.0f : z_row[u + 1], z_tri_row[u], &state);
-      c_row[u] = state.c;
-      d_row[u] = state.d;
-    }
-    float update = 0.0f;
-    for (int u = width - 1; u >= 0; --u) {
-      if (run_row[u] == RF_RUN_MASKED) continue;
-      update = rf_fuse_backward(rf_fusion_run_ends(u, width, u + 1 < width ? run_row[u + 1] : 0u), c_row[u], d_row[u],
-                                update);
-      z_row[u] += update;
-    }
-  }
-}
+// The order of these includes is their meaning.
+// clang-format off
+#include "depth/row_kind_global.h"
+#include "depth/row_fusion_rows.h"
+#include "depth/row_kind_end.h"
+#ifdef __OPENCL_VERSION__
+#include "depth/row_kind_on_chip.h"
+#include "depth/row_fusion_rows.h"
+#include "depth/row_kind_end.h"
+#include "depth/row_kind_lanes.h"
+#include "depth/row_fusion_rows.h"
+#include "depth/row_kind_end.h"
+#endif
+// clang-format on
 
 #endif  // RFRECON_KERNELS_DEPTH_ROW_FUSION_H

@@ -11,51 +11,37 @@
 #include "depth/reciprocity.h"
 #include "depth/row_runs.h"
 
-// State of the run being integrated in one row.
+// State of the run being integrated in one row (per kind of row, depth/row_space.h): start is the column of the
+// run's first pixel (-1 outside a run), count its pixels with a triangulated depth, sum_rel
+// the sum over them of (z_tri - z) / z, seed the depth at its first pixel (mm), z the depth at the current pixel (mm).
+#define RF_RUN_STATE_FIELDS(real, integer) \
+  integer start;                           \
+  integer count;                           \
+  real sum_rel;                            \
+  real seed;                               \
+  real z;
 typedef struct {  // NOLINT(modernize-use-using): shared with OpenCL C, which has no `using`
-  int start;      // column of the run's first pixel, -1 outside a run
-  int count;      // pixels of the run with a triangulated depth
-  float sum_rel;  // sum over them of (z_tri - z) / z
-  float seed;     // depth at the run's first pixel, mm
-  float z;        // depth at the current pixel, mm
+  RF_RUN_STATE_FIELDS(float, int)
 } RfRunState;
-
-RF_INLINE void rf_run_state_init(RfRunState* state) {
-  state->start = -1;
-  state->count = 0;
-  state->sum_rel = 0.0f;
-  state->seed = 0.0f;
-  state->z = 0.0f;
-}
-
-#define RF_ROW_SPACE RF_GLOBAL
-#define RF_ROW_FN(name) name
-#include "depth/row_integration_rows.h"
-#undef RF_ROW_SPACE
-#undef RF_ROW_FN
 #ifdef __OPENCL_VERSION__
-#define RF_ROW_SPACE
-#define RF_ROW_FN(name) RF_ON_CHIP(name)
-#include "depth/row_integration_rows.h"
-#undef RF_ROW_SPACE
-#undef RF_ROW_FN
+typedef struct {
+  RF_RUN_STATE_FIELDS(RF_LANES_REAL, RF_LANES_INT)
+} RF_LANES_FN(RfRunState);
 #endif
 
-// The whole row: `passes` shooting passes (>= 1) over every run. Writes z_row (NaN where masked).
-RF_INLINE void rf_integrate_row(RfRectifiedRig rig, float beta, int width, int proj_width, int passes,
-                                RF_GLOBAL const float* e_cam_row, RF_GLOBAL const float* e_proj_row,
-                                RF_GLOBAL const float* z_tri_row, RF_GLOBAL const unsigned char* run_row,
-                                RF_GLOBAL float* z_row) {
-  for (int pass = 0; pass < passes; ++pass) {
-    RfRunState state;
-    rf_run_state_init(&state);
-    for (int u = 0; u < width; ++u) {
-      rf_integrate_pixel(rig, beta, u, proj_width, pass, passes, e_cam_row, e_proj_row, z_tri_row, run_row, z_row,
-                         &state);
-      RF_ROWS_IN_STEP();
-    }
-    rf_close_run(&state, z_row, pass + 1 < passes);
-  }
-}
+// The order of these includes is their meaning.
+// clang-format off
+#include "depth/row_kind_global.h"
+#include "depth/row_integration_rows.h"
+#include "depth/row_kind_end.h"
+#ifdef __OPENCL_VERSION__
+#include "depth/row_kind_on_chip.h"
+#include "depth/row_integration_rows.h"
+#include "depth/row_kind_end.h"
+#include "depth/row_kind_lanes.h"
+#include "depth/row_integration_rows.h"
+#include "depth/row_kind_end.h"
+#endif
+// clang-format on
 
 #endif  // RFRECON_KERNELS_DEPTH_ROW_INTEGRATION_H

@@ -120,7 +120,9 @@ RF_INLINE void rf_integrate_rows_interleaved(RfRectifiedRig rig, int first_row, 
           }
         }
       }
-      for (int k = 0; k < group; ++k) RF_ON_CHIP(rf_close_run)(&states[k], z_rows + k * width, pass + 1 < passes);
+      for (int k = 0; k < group; ++k) {
+        RF_ON_CHIP(rf_close_run)(&states[k], z_rows + k * width, states[k].start >= 0, pass + 1 < passes);
+      }
     }
     rf_store_row_group(group, width, z_rows, z + base);
   }
@@ -154,11 +156,13 @@ RF_INLINE void rf_fuse_rows_interleaved(RfRectifiedRig rig, int first_row, int r
         RF_HLS_DEPENDENCE(sweeps, RF_FUSE_INTERLEAVE)
         const int at = k * width + u;
         if (k < group && run_rows[at] != RF_RUN_MASKED) {
-          if (rf_fusion_run_starts(u, run_rows[at], u > 0 ? run_rows[at - 1] : 0u)) rf_sweep_state_init(&sweeps[k]);
-          const int run_ends = rf_fusion_run_ends(u, width, u + 1 < width ? run_rows[at + 1] : 0u);
+          if (rf_fusion_run_starts(run_rows[at], u > 0 ? run_rows[at - 1] : RF_RUN_MASKED)) {
+            rf_sweep_state_init(&sweeps[k]);
+          }
+          const int run_ends = rf_fusion_run_ends(u + 1 < width ? run_rows[at + 1] : RF_RUN_MASKED);
           RF_ON_CHIP(rf_fuse_forward)
-          (rig, betas[k], u, run_ends, proj_width, weights, e_cam_rows + k * width, e_proj_rows + k * proj_width,
-           z_rows[at], run_ends ? 0.0f : z_rows[at + 1], z_tri_rows[at], &sweeps[k]);
+          (rig, betas[k], u, width, run_ends == 0, proj_width, weights, e_cam_rows + k * width,
+           e_proj_rows + k * proj_width, z_rows[at], run_ends ? 0.0f : z_rows[at + 1], z_tri_rows[at], &sweeps[k]);
           c_rows[at] = sweeps[k].c;
           d_rows[at] = sweeps[k].d;
         }
@@ -176,7 +180,7 @@ RF_INLINE void rf_fuse_rows_interleaved(RfRectifiedRig rig, int first_row, int r
         RF_HLS_DEPENDENCE(updates, RF_FUSE_INTERLEAVE)
         const int at = k * width + u;
         if (k < group && run_rows[at] != RF_RUN_MASKED) {
-          const int run_ends = rf_fusion_run_ends(u, width, u + 1 < width ? run_rows[at + 1] : 0u);
+          const int run_ends = rf_fusion_run_ends(u + 1 < width ? run_rows[at + 1] : RF_RUN_MASKED);
           updates[k] = rf_fuse_backward(run_ends, c_rows[at], d_rows[at], updates[k]);
           z_rows[at] += updates[k];
         }

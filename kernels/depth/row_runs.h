@@ -4,8 +4,8 @@
 #ifndef RFRECON_KERNELS_DEPTH_ROW_RUNS_H
 #define RFRECON_KERNELS_DEPTH_ROW_RUNS_H
 
-#define RF_RUN_MASKED 0u    // no depth here (shadow, no correspondence, saturated, grazing)
-#define RF_RUN_CONTINUE 1u  // continues the run of the pixel on its left
-#define RF_RUN_START 2u     // first pixel of a run (after a mask, a depth jump or a crease)
+#define RF_RUN_MASKED 0    // no depth here (shadow, no correspondence, saturated, grazing)
+#define RF_RUN_CONTINUE 1  // continues the run of the pixel on its left
+#define RF_RUN_START 2     // first pixel of a run (after a mask, a depth jump or a crease)
 
 #endif  // RFRECON_KERNELS_DEPTH_ROW_RUNS_H

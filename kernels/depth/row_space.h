@@ -1,15 +1,27 @@
-// Address spaces of the rows the shared depth functions read, for OpenCL C and C++ alike.
+// The kinds of rows the shared depth functions work on, for OpenCL C and C++ alike.
 //
-// OpenCL C 1.2 has no generic address space, so a function reading a row must say whether the row is in global
-// memory (the NDRange kernels, which read the tile's buffers directly) or on chip (the single work-item kernels,
-// which copy each row into private buffers first). The files named *_rows.h hold such functions; the header that
-// includes one (reciprocity.h, row_integration.h, row_fusion.h) instantiates it twice in OpenCL C:
-//   RF_ROW_SPACE = RF_GLOBAL, RF_ROW_FN(name) = name                  rows in global memory
-//   RF_ROW_SPACE = (private), RF_ROW_FN(name) = RF_ON_CHIP(name)      rows in on-chip buffers
-// and once in C++ (no address spaces), where RF_ON_CHIP(name) is name itself.
+// OpenCL C 1.2 has no generic address space and no templates, so the functions that read rows (the files named
+// *_rows.h) are written once over a few macros and instantiated per kind of row, each kind's macros set by
+// depth/row_kind_*.h:
+//   rows in global memory, one row per call: RF_ROW_FN(name) = name (C++ references, HLS tops, segmentation);
+//   rows in on-chip buffers (single work-item entries): RF_ROW_FN(name) = RF_ON_CHIP(name), OpenCL C only;
+//   RF_LANES rows side by side, one per vector lane (NDRange entries): RF_ROW_FN(name) = RF_LANES_FN(name), OpenCL C
+//   only, in the interleaved layout of depth/row_lanes.h.
+// The macros of an instance: RF_ROW_SPACE (address space of the rows), RF_REAL and RF_INT (a row's float and integer
+// values: float and int, or their RF_LANES-wide vectors), RF_TRUE (a set mask: 1, or -1 in every lane), RF_TO_REAL,
+// RF_TO_INT (conversions), RF_LOAD, RF_STORE, RF_LOAD_CODE (element u of the row, the same u in every lane),
+// RF_GATHER (element i, i per lane), RF_STORE_IF (a store per lane where its mask is set), RF_SELECT(type, mask,
+// if_set, otherwise) (a choice per lane) and RF_LANE_TYPE(name) (a struct of such values). The shared code has no
+// branch on a row's values: a condition is a mask, the result of a comparison (0 or 1 on scalars, 0 or -1 per lane on
+// vectors), combined with & and |, and a choice is RF_SELECT, never ?: on a mask nor &&, || or !. On lanes RF_SELECT is
+// OpenCL's select(), a call that the compiler keeps whole: ?: on a vector mask lets clang rewrite the choice into
+// arithmetic on vectors of booleans (m ? x + 1 : x becomes x + zext(m)), which oclgrind 21.10 evaluates wrongly (zext
+// of a true lane gives 255, its negation -2), so the kernels must not depend on it. For the same reason a builtin never
+// mixes a vector and a scalar: oclgrind's min(int8, int) leaves 0 in lanes 2 to 7; min(i, (RF_INT)(n)) it gets right.
 #ifndef RFRECON_KERNELS_DEPTH_ROW_SPACE_H
 #define RFRECON_KERNELS_DEPTH_ROW_SPACE_H
 
+#include "common/lanes.h"
 #include "common/portable.h"
 
 #ifdef __OPENCL_VERSION__

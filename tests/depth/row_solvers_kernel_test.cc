@@ -9,6 +9,7 @@
 #include "host/cl/device_selection.h"
 #include "host/core/errors.h"
 #include "host/depth/row_solvers.h"
+#include "kernels/common/lanes.h"
 #include "kernels/common/params.h"
 #include "tests/depth/analytic_rows.h"
 #include "tests/depth/row_solver_inputs.h"
@@ -108,10 +109,11 @@ TEST_P(RowSolversKernel, FusionMatchesReferenceOnTiles) {
   expect_close(first, reference);
 }
 
-TEST_P(RowSolversKernel, RowsOfDifferentRunsInOneTileMatchReference) {
-  // 19 rows in one tile: two whole work-groups of 8 rows and a padded one on the NDRange entry, whose rows meet masked
-  // pixels, run starts and ends at different columns: a row masked at its start, one cut in three runs, one masked
-  // throughout, one whose run starts at its last pixel.
+TEST_P(RowSolversKernel, RowsOfDifferentRunsSideBySideMatchReference) {
+  // 19 rows in one tile: two whole groups of RF_LANES rows and a padded one on the NDRange entry, whose lanes meet
+  // masked pixels, run starts and ends at different columns: a row masked at its start, one cut in three runs, one
+  // masked throughout, one whose run starts at its last pixel.
+  static_assert(19 % RF_LANES != 0 && 19 > 2 * RF_LANES, "the test needs two whole groups of lanes and a partial one");
   auto rows = testing::kernel_test_rows(19);
   const auto code = [&](int row, int u) -> std::uint8_t& {
     return rows.runs[static_cast<std::size_t>(row) * static_cast<std::size_t>(rows.width) + u];

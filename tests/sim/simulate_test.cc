@@ -2,8 +2,11 @@
 // bad input rejected with the field named and nothing left behind.
 #include "sim/simulate.h"
 
+#include <algorithm>
+#include <cstring>
 #include <fstream>
 #include <iterator>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
@@ -12,6 +15,7 @@
 #include "host/core/errors.h"
 #include "sim/builtin_scenes.h"
 #include "sim/frames.h"
+#include "sim/render.h"
 #include "tests/common/temp_dir.h"
 #include "tests/sim/test_scenes.h"
 
@@ -72,6 +76,33 @@ TEST_F(SimulateTest, SameSeedGivesIdenticalBytes) {
   simulate(again, dir_ / "d", {2, false, {}});
   EXPECT_EQ(bytes(dir_ / "a" / "capture" / manifest.frames[5].file),
             bytes(dir_ / "d" / "capture" / manifest.frames[5].file));
+}
+
+TEST_F(SimulateTest, SharedCameraRaysRenderTheSameTransport) {
+  // A lens with distortion: the rays undistorted once for the whole camera (what simulate shares between a scene's
+  // views) give T and the ground truth equal to the bit to those the renderer undistorts row by row.
+  auto json = small_rig({tilted_plane(kLambert)});
+  json["camera"]["distortion"] = {-0.2, 0.05, 0.001, -0.002, 0.0};
+  const Scene scene = make_scene(json);
+  const CameraRays rays = camera_rays(scene.camera, scene.render);
+  ASSERT_EQ(rays.normalized.size(), static_cast<std::size_t>(scene.camera.size.area()) *
+                                        (scene.render.supersample * scene.render.supersample + 1));
+  const Transport shared = render_transport(scene, scene.render, &rays);
+  const Transport alone = render_transport(scene);
+  ASSERT_GT(alone.T.nonZeros(), 0);
+  ASSERT_EQ(shared.T.nonZeros(), alone.T.nonZeros());
+  const auto nnz = static_cast<std::size_t>(alone.T.nonZeros());
+  EXPECT_TRUE(std::equal(alone.T.innerIndexPtr(), alone.T.innerIndexPtr() + nnz, shared.T.innerIndexPtr()));
+  EXPECT_TRUE(std::equal(alone.T.valuePtr(), alone.T.valuePtr() + nnz, shared.T.valuePtr()));
+  const auto same_bytes = [](const cv::Mat& a, const cv::Mat& b) {  // NaN where nothing is seen, in both
+    return a.total() * a.elemSize() == b.total() * b.elemSize() &&
+           std::memcmp(a.data, b.data, a.total() * a.elemSize()) == 0;
+  };
+  EXPECT_TRUE(same_bytes(shared.truth.depth_mm, alone.truth.depth_mm));
+  EXPECT_TRUE(same_bytes(shared.truth.correspondence, alone.truth.correspondence));
+  RenderOptions finer = scene.render;
+  finer.supersample += 1;  // rays of another supersampling are refused, not read past their end
+  EXPECT_THROW(render_transport(scene, finer, &rays), std::invalid_argument);
 }
 
 TEST_F(SimulateTest, NoiseFreeFramesLinearizeToTransport) {
