@@ -102,14 +102,13 @@ struct LaunchRows {
   }
 
   // The tile's rows back from the launch's layout.
-  std::vector<float> rows_of(const std::vector<float>& launched, int width) const {
+  std::vector<float> rows_of(std::vector<float> launched, int width) const {
+    if (!lanes) return launched;  // the tile itself
     const auto w = static_cast<std::size_t>(width);
     std::vector<float> out(static_cast<std::size_t>(count) * w);
     for (std::size_t row = 0; row < static_cast<std::size_t>(count); ++row) {
       const std::size_t group = row / RF_LANES, lane = row % RF_LANES;
-      for (std::size_t u = 0; u < w; ++u) {
-        out[row * w + u] = lanes ? launched[(group * w + u) * RF_LANES + lane] : launched[row * w + u];
-      }
+      for (std::size_t u = 0; u < w; ++u) out[row * w + u] = launched[(group * w + u) * RF_LANES + lane];
     }
     return out;
   }
