@@ -45,14 +45,27 @@ namespace detail {
   return buffer;
 }
 
-::cl::Buffer borrow_bytes(const ::cl::Context& context, const void* data, std::size_t bytes) {
-  if (bytes == 0 || data == nullptr) throw std::invalid_argument("cl::borrow: an empty range");
+::cl::Buffer host_ptr_buffer(const ::cl::Context& context, cl_mem_flags flags, void* data, std::size_t bytes) {
+  if (bytes == 0 || data == nullptr) throw std::invalid_argument("cl::borrow/share: an empty range");
   cl_int status = CL_SUCCESS;
-  // The kernels only read it (CL_MEM_READ_ONLY), so the const_cast never leads to a write.
-  ::cl::Buffer buffer(context, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, bytes, const_cast<void*>(data), &status);
+  ::cl::Buffer buffer(context, flags | CL_MEM_USE_HOST_PTR, bytes, data, &status);
   RF_CL_CHECK_CODE(status, "clCreateBuffer (CL_MEM_USE_HOST_PTR)");
   return buffer;
 }
+
+}  // namespace detail
+
+void sync_to_host(::cl::CommandQueue& queue, const ::cl::Buffer& buffer) {
+  cl_int status = CL_SUCCESS;
+  const auto bytes = buffer.getInfo<CL_MEM_SIZE>(&status);
+  RF_CL_CHECK_CODE(status, "clGetMemObjectInfo(CL_MEM_SIZE)");
+  void* mapped = queue.enqueueMapBuffer(buffer, CL_TRUE, CL_MAP_READ, 0, bytes, nullptr, nullptr, &status);
+  RF_CL_CHECK_CODE(status, "clEnqueueMapBuffer");
+  RF_CL_CHECK(queue.enqueueUnmapMemObject(buffer, mapped));
+  RF_CL_CHECK(queue.finish());
+}
+
+namespace detail {
 
 void write_bytes(::cl::CommandQueue& queue, const ::cl::Buffer& buffer, const void* data, std::size_t bytes,
                  bool blocking, std::size_t offset_bytes) {

@@ -18,11 +18,17 @@ std::string kernel_name(std::string_view base, KernelEntry entry);
 // That kernel of program; throws ClError naming it.
 ::cl::Kernel make_kernel(const ::cl::Program& program, std::string_view base, KernelEntry entry);
 
+// Sets kernel's arguments from index `first` on, in order.
+template <typename... Args>
+void set_args_from(::cl::Kernel& kernel, cl_uint first, const Args&... args) {
+  [[maybe_unused]] cl_uint index = first;
+  (RF_CL_CHECK(kernel.setArg(index++, args)), ...);
+}
+
 // Sets all of kernel's arguments, in order from index 0.
 template <typename... Args>
 void set_args(::cl::Kernel& kernel, const Args&... args) {
-  [[maybe_unused]] cl_uint index = 0;
-  (RF_CL_CHECK(kernel.setArg(index++, args)), ...);
+  set_args_from(kernel, 0, args...);
 }
 
 struct LaunchOptions {
@@ -45,7 +51,7 @@ namespace detail {
 void write_bytes(::cl::CommandQueue& queue, const ::cl::Buffer& buffer, const void* data, std::size_t bytes,
                  bool blocking, std::size_t offset_bytes);
 void read_bytes(::cl::CommandQueue& queue, const ::cl::Buffer& buffer, void* data, std::size_t bytes);
-::cl::Buffer borrow_bytes(const ::cl::Context& context, const void* data, std::size_t bytes);
+::cl::Buffer host_ptr_buffer(const ::cl::Context& context, cl_mem_flags flags, void* data, std::size_t bytes);
 }  // namespace detail
 
 // A buffer of `count` elements of T (at least one), contents undefined.
@@ -72,8 +78,21 @@ template <typename T>
 // alive and unchanged until every command reading the buffer has run.
 template <typename T>
 ::cl::Buffer borrow(const ::cl::Context& context, const T* data, std::size_t count) {
-  return detail::borrow_bytes(context, data, count * sizeof(T));
+  // The kernels only read it (CL_MEM_READ_ONLY), so the const_cast never leads to a write.
+  return detail::host_ptr_buffer(context, CL_MEM_READ_ONLY, const_cast<T*>(data), count * sizeof(T));
 }
+
+// A read-write buffer over the caller's data[0, count) (CL_MEM_USE_HOST_PTR, count > 0), initial contents and all:
+// runtimes that run kernels on host memory (PoCL) work on it in place, others on a copy. The host must leave data
+// alone while the buffer lives, until sync_to_host() has made it hold the kernels' results.
+template <typename T>
+::cl::Buffer share(const ::cl::Context& context, std::vector<T>& data) {
+  return detail::host_ptr_buffer(context, CL_MEM_READ_WRITE, data.data(), data.size() * sizeof(T));
+}
+
+// Waits for the queue, then makes the host memory of a share()d buffer hold its contents (a map and unmap: no copy
+// where the kernels ran on that memory).
+void sync_to_host(::cl::CommandQueue& queue, const ::cl::Buffer& buffer);
 
 // Writes data[0, count) to buffer from element `offset` on; nothing for count 0. A non-blocking write reads data
 // later: keep it alive until the queue has run the write.

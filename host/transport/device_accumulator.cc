@@ -1,5 +1,5 @@
-// The transport accumulator on one OpenCL device: kernels/transport/decode.cl and compress.cl, Gray pairs and dot
-// frames gathered into batches on the device before each decode or compression launch.
+// The transport accumulator on one OpenCL device: kernels/transport/decode.cl and compress.cl. The transport's own
+// arrays are the kernels' state; NDRange entries read each frame where it lies, single work-item ones take batches.
 #include <algorithm>
 #include <array>
 #include <stdexcept>
@@ -22,6 +22,7 @@ class DeviceAccumulator final : public TransportAccumulator {
         device_(device),
         entry_(entry),
         n_(setup.camera_size.area()),
+        state_(make_empty_transport(setup)),
         gray_batch_(entry == KernelEntry::kSingleWorkItem ? kGrayBatch : 1) {
     if (setup.entries_per_pixel < 1) throw std::invalid_argument("transport: K must be at least 1");
     const ::cl::Program decode = programs.get(device, "transport/decode.cl", build_options);
@@ -32,24 +33,25 @@ class DeviceAccumulator final : public TransportAccumulator {
     dot_frames_ = cl::make_kernel(compress, "dot_frames", entry);
     finalize_ = cl::make_kernel(compress, "finalize", entry);
 
-    const std::size_t slots = n_ * static_cast<std::size_t>(setup.entries_per_pixel);
     const ::cl::Context& context = device.context();
-    // Dot frames, or on single work-item entries Gray pairs (each pair's two frames): as many frames as a launch takes.
-    const std::size_t gray_frames = entry == KernelEntry::kSingleWorkItem ? 2 * gray_batch_ : 0;
-    const std::size_t batch_frames = std::max<std::size_t>(setup.dot_spacing > 0 ? kBatch : 0, gray_frames);
-    batch_ = cl::make_buffer<float>(context, batch_frames * n_);
-    if (entry_ == KernelEntry::kSingleWorkItem) pairs_buffer_ = cl::make_buffer<cl_uint>(context, pairs_.size());
+    // Single work-item entries take a launch's frames in one buffer (dot frames, or Gray pairs' two frames each); the
+    // NDRange entries read each frame where it lies (borrow).
+    if (entry_ == KernelEntry::kSingleWorkItem) {
+      const std::size_t batch_frames = std::max<std::size_t>(setup.dot_spacing > 0 ? kBatch : 0, 2 * gray_batch_);
+      batch_ = cl::make_buffer<float>(context, batch_frames * n_);
+      pairs_buffer_ = cl::make_buffer<cl_uint>(context, pairs_.size());
+    }
     white_ = cl::make_buffer<float>(context, n_);
     black_ = cl::make_buffer<float>(context, n_);
-    correspondence_ = cl::make_buffer<float>(context, 2 * n_);
-    // Initial contents copied from the host (portable: some runtimes, oclgrind included, track clEnqueueFillBuffer
-    // contents as uninitialized).
-    gray_x_ = initialized<cl_uint>(0, n_);
-    gray_y_ = initialized<cl_uint>(0, n_);
-    flags_ = initialized<cl_uchar>(0, n_);
-    indices_ = initialized<cl_int>(-1, slots);
-    weights_ = initialized<float>(0.0f, slots);
-    energy_ = initialized<float>(0.0f, n_);
+    // The transport's own arrays, in their initial state, are the kernels' state: no copy in or out on runtimes that
+    // run kernels on host memory.
+    gray_x_ = cl::share(context, state_.gray_x);
+    gray_y_ = cl::share(context, state_.gray_y);
+    flags_ = cl::share(context, state_.flags);
+    indices_ = cl::share(context, state_.indices);
+    weights_ = cl::share(context, state_.weights);
+    energy_ = cl::share(context, state_.direct_energy);
+    correspondence_ = cl::share(context, state_.correspondence);
   }
 
   void add_gray_pair(GrayAxis axis, int bit, const cv::Mat& pattern, const cv::Mat& inverse) override {
@@ -80,7 +82,11 @@ class DeviceAccumulator final : public TransportAccumulator {
 
   void add_dot_frame(int offset_x, int offset_y, const cv::Mat& frame) override {
     check_dot_offsets(setup_, offset_x, offset_y);
-    upload(batch_, frame, pending_ * n_);
+    if (entry_ == KernelEntry::kSingleWorkItem) {
+      upload(batch_, frame, pending_ * n_);
+    } else {  // lent until the batch is compressed: the header keeps the frame's memory alive
+      lent_[pending_] = {frame, borrow(frame)};
+    }
     offsets_[2 * pending_] = offset_x;
     offsets_[2 * pending_ + 1] = offset_y;
     if (++pending_ == kBatch) compress_batch();
@@ -92,26 +98,15 @@ class DeviceAccumulator final : public TransportAccumulator {
                  setup_.thresholds.noise, flags_, gray_x_, gray_y_, indices_, weights_, energy_, correspondence_,
                  count());
     run(finalize_);
-    CompressedTransport t;
-    t.setup = setup_;
-    const std::size_t slots = n_ * static_cast<std::size_t>(setup_.entries_per_pixel);
-    t.indices = cl::download<std::int32_t>(device_.queue(), indices_, slots);
-    t.weights = cl::download<float>(device_.queue(), weights_, slots);
-    t.correspondence = cl::download<float>(device_.queue(), correspondence_, 2 * n_);
-    t.gray_x = cl::download<std::uint32_t>(device_.queue(), gray_x_, n_);
-    t.gray_y = cl::download<std::uint32_t>(device_.queue(), gray_y_, n_);
-    t.flags = cl::download<std::uint8_t>(device_.queue(), flags_, n_);
-    t.direct_energy = cl::download<float>(device_.queue(), energy_, n_);
-    return t;
+    for (const auto* buffer : {&gray_x_, &gray_y_, &flags_, &indices_, &weights_, &energy_, &correspondence_}) {
+      cl::sync_to_host(device_.queue(), *buffer);
+    }
+    gray_x_ = gray_y_ = flags_ = indices_ = weights_ = energy_ = correspondence_ = ::cl::Buffer();
+    return std::move(state_);
   }
 
  private:
   cl_uint count() const { return static_cast<cl_uint>(n_); }
-
-  template <typename T>
-  ::cl::Buffer initialized(T value, std::size_t elements) const {
-    return cl::upload(device_.context(), std::vector<T>(elements, value), CL_MEM_READ_WRITE);
-  }
 
   void check_frame(const cv::Mat& frame) const {
     if (frame.type() != CV_32FC1 || frame.size() != setup_.camera_size || !frame.isContinuous()) {
@@ -144,10 +139,18 @@ class DeviceAccumulator final : public TransportAccumulator {
   // One launch over the pending frames; offsets of unused batch slots stay 0 (the kernel skips those frames).
   void compress_batch() {
     const ::cl::Buffer offsets = cl::upload(device_.context(), offsets_.data(), offsets_.size());
-    cl::set_args(dot_frames_, batch_, static_cast<cl_int>(pending_), offsets, setup_.dot_spacing,
-                 setup_.projector_size.width, setup_.projector_size.height, setup_.thresholds.noise, black_, flags_,
-                 gray_x_, gray_y_, indices_, weights_, energy_, count());
+    cl_uint frame_arguments = 1;
+    if (entry_ == KernelEntry::kSingleWorkItem) {
+      cl::set_args(dot_frames_, batch_);
+    } else {
+      for (std::size_t f = 0; f < kBatch; ++f) cl::set_args_from(dot_frames_, f, lent_[f < pending_ ? f : 0].buffer);
+      frame_arguments = kBatch;
+    }
+    cl::set_args_from(dot_frames_, frame_arguments, static_cast<cl_int>(pending_), offsets, setup_.dot_spacing,
+                      setup_.projector_size.width, setup_.projector_size.height, setup_.thresholds.noise, black_,
+                      flags_, gray_x_, gray_y_, indices_, weights_, energy_, count());
     run(dot_frames_, entry_ == KernelEntry::kNdRange ? (n_ + RF_LANES - 1) / RF_LANES : n_);
+    lent_.fill({});
     pending_ = 0;
     offsets_.fill(0);
   }
@@ -166,19 +169,26 @@ class DeviceAccumulator final : public TransportAccumulator {
   cl::DeviceContext& device_;
   KernelEntry entry_;
   std::size_t n_;
+  CompressedTransport state_;  // the kernels' state, shared with them (cl::share) until finish() returns it
   // Gray pairs per decode launch: a whole batch on FPGA boards (single work-item: one read-modify-write of each
   // pixel's code words in DDR per batch), one on CPUs and GPUs, which decode a pair while its frames are still in
   // cache (batched, PoCL's decode took twice as long: a launch reads 16 frames spread over the 84 MB batch).
   std::size_t gray_batch_;
   ::cl::Kernel gray_pairs_, gray_finalize_, dot_frames_, finalize_;
-  // The batch of Gray pairs or of dot frames: all Gray pairs come before finish_gray, which decodes the last batch
-  // before the first dot frame (the call order of TransportAccumulator).
+  // Single work-item entries: the batch of Gray pairs or of dot frames. All Gray pairs come before finish_gray, which
+  // decodes the last batch before the first dot frame (the call order of TransportAccumulator).
   ::cl::Buffer batch_, pairs_buffer_, white_, black_, gray_x_, gray_y_, flags_, indices_, weights_, energy_,
       correspondence_;
   std::size_t gray_pending_ = 0;                    // Gray pairs in batch_ not yet decoded
   std::array<cl_uint, 2 * kGrayBatch> pairs_ = {};  // their (bit mask, axis)
-  std::size_t pending_ = 0;                         // frames in batch_ not yet compressed
-  std::array<cl_int, 2 * kBatch> offsets_ = {};     // their (x, y) dot offsets
+  // A dot frame lent to the NDRange entry: the frame and a buffer over its memory.
+  struct LentFrame {
+    cv::Mat frame;
+    ::cl::Buffer buffer;
+  };
+  std::array<LentFrame, kBatch> lent_;
+  std::size_t pending_ = 0;                      // dot frames in batch_ or lent_ not yet compressed
+  std::array<cl_int, 2 * kBatch> offsets_ = {};  // their (x, y) dot offsets
 };
 
 }  // namespace

@@ -8,12 +8,12 @@
 // s/2) / s) (same for y), so the s x s frames fill its window [px - (s-1)/2, px + s/2] x [py - (s-1)/2, py + s/2]:
 // with x0 = px - (s-1)/2 and a = x0 mod s, qx = x0 + ((ox - a) mod s), where ox - a lies in (-s, s).
 //
-// Frames come in batches of up to RF_FRAME_BATCH (frame f of the batch at f * n + c): a pixel's row is read once per
-// batch, updated in registers frame after frame in the batch's order (so the result equals one frame at a time, to
-// the bit), and written back once, only when a frame of the batch reached it. The only division by the run-time
-// spacing, a = x0 mod s, is done once per pixel and batch; on FPGA targets it is a choice among divisions by the
-// compile-time RF_DOT_SPACINGS (the host refuses other spacings). The centroid's row of an entry, q / width, is a
-// multiplication by 1 / width (computed once) corrected to the exact quotient.
+// Frames come in batches of up to RF_FRAME_BATCH (one array, frame f at f * n + c, or one array per frame): a pixel's
+// row is read once per batch, updated in registers frame after frame in the batch's order (so the result equals one
+// frame at a time, to the bit), and written back once, only when a frame of the batch reached it. The only division by
+// the run-time spacing, a = x0 mod s, is done once per pixel and batch; on FPGA targets it is a choice among divisions
+// by the compile-time RF_DOT_SPACINGS (the host refuses other spacings). The centroid's row of an entry, q / width, is
+// a multiplication by 1 / width (computed once) corrected to the exact quotient.
 #ifndef RFRECON_KERNELS_TRANSPORT_COMPRESSION_H
 #define RFRECON_KERNELS_TRANSPORT_COMPRESSION_H
 
@@ -95,12 +95,13 @@ RF_INLINE void rf_dot_update_row(unsigned c, const float* value, const int* dot,
   energy[c] = e;
 }
 
-// A batch of frame_count <= RF_FRAME_BATCH frames (offsets_x/offsets_y: their dot offsets) at pixel c of n.
-RF_INLINE void rf_dot_frames_pixel(unsigned c, unsigned n, int frame_count, const int* offsets_x, const int* offsets_y,
-                                   RfDotGrid grid, RF_GLOBAL const float* frames, RF_GLOBAL const float* black,
-                                   RF_GLOBAL const unsigned char* flags, RF_GLOBAL const unsigned* projector_x,
-                                   RF_GLOBAL const unsigned* projector_y, RF_GLOBAL int* indices,
-                                   RF_GLOBAL float* weights, RF_GLOBAL float* energy) {
+// Pixel c's samples of a batch of frame_count <= RF_FRAME_BATCH frames (sample[f], f < frame_count), whose dot
+// offsets are offsets_x/offsets_y.
+RF_INLINE void rf_dot_samples_pixel(unsigned c, const float* sample, int frame_count, const int* offsets_x,
+                                    const int* offsets_y, RfDotGrid grid, RF_GLOBAL const float* black,
+                                    RF_GLOBAL const unsigned char* flags, RF_GLOBAL const unsigned* projector_x,
+                                    RF_GLOBAL const unsigned* projector_y, RF_GLOBAL int* indices,
+                                    RF_GLOBAL float* weights, RF_GLOBAL float* energy) {
   if (!RF_COMPRESSIBLE(flags[c])) return;
   const int s = grid.spacing;
   const int x0 = rf_window_start((int)projector_x[c], s);
@@ -116,7 +117,7 @@ RF_INLINE void rf_dot_frames_pixel(unsigned c, unsigned n, int frame_count, cons
   for (int f = 0; f < RF_FRAME_BATCH; ++f) {
     const int qx = rf_window_dot(x0, ax, offsets_x[f], s);
     const int qy = rf_window_dot(y0, ay, offsets_y[f], s);
-    const float v = f < frame_count ? frames[(size_t)f * n + c] - dark : 0.0f;
+    const float v = f < frame_count ? sample[f] - dark : 0.0f;
     const int lit = f < frame_count && v > grid.noise_threshold && qx >= 0 && qx < grid.projector_width && qy >= 0 &&
                     qy < grid.projector_height;
     value[f] = lit ? v : 0.0f;
@@ -126,15 +127,29 @@ RF_INLINE void rf_dot_frames_pixel(unsigned c, unsigned n, int frame_count, cons
   if (reached) rf_dot_update_row(c, value, dot, 1, indices, weights, energy);
 }
 
+// The same with the batch in one array (frame f at f * n).
+RF_INLINE void rf_dot_frames_pixel(unsigned c, unsigned n, int frame_count, const int* offsets_x, const int* offsets_y,
+                                   RfDotGrid grid, RF_GLOBAL const float* frames, RF_GLOBAL const float* black,
+                                   RF_GLOBAL const unsigned char* flags, RF_GLOBAL const unsigned* projector_x,
+                                   RF_GLOBAL const unsigned* projector_y, RF_GLOBAL int* indices,
+                                   RF_GLOBAL float* weights, RF_GLOBAL float* energy) {
+  float sample[RF_FRAME_BATCH] RF_PARTITION_COMPLETE;
+  RF_UNROLL
+  for (int f = 0; f < RF_FRAME_BATCH; ++f) sample[f] = f < frame_count ? frames[(size_t)f * n + c] : 0.0f;
+  rf_dot_samples_pixel(c, sample, frame_count, offsets_x, offsets_y, grid, black, flags, projector_x, projector_y,
+                       indices, weights, energy);
+}
+
 #ifdef __OPENCL_VERSION__
-// The same for the RF_LANES pixels c0 .. c0 + RF_LANES - 1 (all < n) at once, one per vector lane: the batch's
-// contributions in vector arithmetic, then the rows of the pixels a frame reached, one by one.
-RF_INLINE void rf_dot_frames_lanes(unsigned c0, unsigned n, int frame_count, const int* offsets_x, const int* offsets_y,
-                                   RfDotGrid grid, __global const float* frames, __global const float* black,
+// The RF_LANES pixels c0 .. c0 + RF_LANES - 1 at once, one per vector lane, frame f of the batch at frames[f]: the
+// batch's contributions in vector arithmetic, then the rows of the pixels a frame reached, one by one.
+RF_INLINE void rf_dot_frames_lanes(unsigned c0, int frame_count, const int* offsets_x, const int* offsets_y,
+                                   RfDotGrid grid, __global const float* const* frames, __global const float* black,
                                    __global const uchar* flags, __global const uint* projector_x,
                                    __global const uint* projector_y, __global int* indices, __global float* weights,
                                    __global float* energy) {
   const int8 compressible = RF_COMPRESSIBLE(convert_uint8(vload8(0, flags + c0)));
+  if (!any(compressible)) return;  // pixels the projector does not light read no frame
   const int s = grid.spacing;
   const int8 x0 = RF_LANES_FN(rf_window_start)(convert_int8(vload8(0, projector_x + c0)), s);
   const int8 y0 = RF_LANES_FN(rf_window_start)(convert_int8(vload8(0, projector_y + c0)), s);
@@ -148,7 +163,7 @@ RF_INLINE void rf_dot_frames_lanes(unsigned c0, unsigned n, int frame_count, con
     const int8 qx = RF_LANES_FN(rf_window_dot)(x0, ax, offsets_x[f], s);
     const int8 qy = RF_LANES_FN(rf_window_dot)(y0, ay, offsets_y[f], s);
     const int in_batch = f < frame_count;
-    const float8 v = in_batch ? vload8(0, frames + (size_t)f * n + c0) - dark : 0.0f;
+    const float8 v = in_batch ? vload8(0, frames[f] + c0) - dark : 0.0f;
     // The comparisons' masks (-1 or 0 per lane) combined bitwise: written with && between these vectors and the
     // scalar f < frame_count, no lane was ever lit under oclgrind (PoCL's were right).
     const int8 lit = (in_batch ? compressible : 0) & (v > grid.noise_threshold) & (qx >= 0) &
