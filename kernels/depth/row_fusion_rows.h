@@ -39,8 +39,8 @@ RF_INLINE RF_REAL RF_ROW_FN(rf_fuse_backward)(RF_INT run_ends, RF_REAL c, RF_REA
 // The forward sweep at pixel u of a run (state reset at the run's first pixel), linked_next set where pixel u + 1
 // continues the run: z and z_next are the current depths at u and u + 1 (z_next unused at the run's last pixel), t the
 // triangulated depth at u (NaN where none). Leaves the sweep's coefficients at u in state->c and state->d and the link
-// from u to u + 1 in the rest of the state. The link's slopes are evaluated at the run's last pixel too, and not used.
-// Rows of width >= 2.
+// from u to u + 1 in the rest of the state. The link's slopes are evaluated at the run's last pixel too (on lanes,
+// unless no lane links), and not used. Rows of width >= 2.
 RF_INLINE void RF_ROW_FN(rf_fuse_forward)(RfRectifiedRig rig, RF_REAL beta, int u, int width, RF_INT linked_next,
                                           int proj_width, RfFusionWeights weights, RF_ROW_SPACE const float* e_cam_row,
                                           RF_ROW_SPACE const float* e_proj_row, RF_REAL z, RF_REAL z_next, RF_REAL t,
@@ -49,10 +49,13 @@ RF_INLINE void RF_ROW_FN(rf_fuse_forward)(RfRectifiedRig rig, RF_REAL beta, int 
   const RF_REAL lambda = RF_SELECT(RF_REAL, t == t, 1.0f / (sigma_z * sigma_z), 0.0f);
   RF_INT ok = RF_TRUE;
   const RF_REAL dz = RF_FUSION_DIFF_STEP * z;
-  const int from = RF_MIN_INT(u, width - 2);  // at the row's last pixel, any step inside the row
-  const RF_REAL h = RF_ROW_FN(rf_rk4_increment)(rig, beta, from, z, e_cam_row, e_proj_row, proj_width, &ok);
-  const RF_REAL h_shifted =
-      RF_ROW_FN(rf_rk4_increment)(rig, beta, from, z + dz, e_cam_row, e_proj_row, proj_width, &ok);
+  RF_REAL h = 0.0f;
+  RF_REAL h_shifted = 0.0f;
+  if (RF_ANY(linked_next)) {                    // the slopes matter only on a link to the next pixel
+    const int from = RF_MIN_INT(u, width - 2);  // at the row's last pixel, any step inside the row
+    h = RF_ROW_FN(rf_rk4_increment)(rig, beta, from, z, e_cam_row, e_proj_row, proj_width, &ok);
+    h_shifted = RF_ROW_FN(rf_rk4_increment)(rig, beta, from, z + dz, e_cam_row, e_proj_row, proj_width, &ok);
+  }
   const RF_INT linked = linked_next & ok;  // the link from u to u + 1
   const RF_REAL mu_next = RF_SELECT(RF_REAL, linked, weights.mu, 0.0f);
   const RF_REAL a = RF_SELECT(RF_REAL, linked, 1.0f + (h_shifted - h) / dz, 0.0f);
@@ -82,23 +85,25 @@ RF_INLINE void RF_ROW_FN(rf_fuse_row)(RfRectifiedRig rig, RF_REAL beta, int widt
     RF_ROW_FN(rf_sweep_state_init)(&state);
     for (int u = 0; u < width; ++u) {
       const RF_INT code = RF_LOAD_CODE(run_row, u);
-      const RF_INT next_code = RF_ROW_FN(rf_next_code)(run_row, u, width);
-      RF_LANE_TYPE(RfSweepState) next = state;
-      const RF_INT starts = RF_ROW_FN(rf_fusion_run_starts)(code, RF_ROW_FN(rf_prev_code)(run_row, u));
-      next.mu = RF_SELECT(RF_REAL, starts, 0.0f, next.mu);
-      next.a = RF_SELECT(RF_REAL, starts, 0.0f, next.a);
-      next.r = RF_SELECT(RF_REAL, starts, 0.0f, next.r);
-      next.c = RF_SELECT(RF_REAL, starts, 0.0f, next.c);
-      next.d = RF_SELECT(RF_REAL, starts, 0.0f, next.d);
-      RF_ROW_FN(rf_fuse_forward)
-      (rig, beta, u, width, next_code == RF_RUN_CONTINUE, proj_width, weights, e_cam_row, e_proj_row, RF_LOAD(z_row, u),
-       RF_LOAD(z_row, RF_MIN_INT(u + 1, width - 1)), RF_LOAD(z_tri_row, u), &next);
-      const RF_INT masked = code == RF_RUN_MASKED;
-      state.mu = RF_SELECT(RF_REAL, masked, state.mu, next.mu);
-      state.a = RF_SELECT(RF_REAL, masked, state.a, next.a);
-      state.r = RF_SELECT(RF_REAL, masked, state.r, next.r);
-      state.c = RF_SELECT(RF_REAL, masked, state.c, next.c);
-      state.d = RF_SELECT(RF_REAL, masked, state.d, next.d);
+      if (RF_ANY(code != RF_RUN_MASKED)) {  // else every row is masked here and the state stays
+        const RF_INT next_code = RF_ROW_FN(rf_next_code)(run_row, u, width);
+        RF_LANE_TYPE(RfSweepState) next = state;
+        const RF_INT starts = RF_ROW_FN(rf_fusion_run_starts)(code, RF_ROW_FN(rf_prev_code)(run_row, u));
+        next.mu = RF_SELECT(RF_REAL, starts, 0.0f, next.mu);
+        next.a = RF_SELECT(RF_REAL, starts, 0.0f, next.a);
+        next.r = RF_SELECT(RF_REAL, starts, 0.0f, next.r);
+        next.c = RF_SELECT(RF_REAL, starts, 0.0f, next.c);
+        next.d = RF_SELECT(RF_REAL, starts, 0.0f, next.d);
+        RF_ROW_FN(rf_fuse_forward)
+        (rig, beta, u, width, next_code == RF_RUN_CONTINUE, proj_width, weights, e_cam_row, e_proj_row,
+         RF_LOAD(z_row, u), RF_LOAD(z_row, RF_MIN_INT(u + 1, width - 1)), RF_LOAD(z_tri_row, u), &next);
+        const RF_INT masked = code == RF_RUN_MASKED;
+        state.mu = RF_SELECT(RF_REAL, masked, state.mu, next.mu);
+        state.a = RF_SELECT(RF_REAL, masked, state.a, next.a);
+        state.r = RF_SELECT(RF_REAL, masked, state.r, next.r);
+        state.c = RF_SELECT(RF_REAL, masked, state.c, next.c);
+        state.d = RF_SELECT(RF_REAL, masked, state.d, next.d);
+      }
       RF_STORE(c_row, u, state.c);
       RF_STORE(d_row, u, state.d);
     }

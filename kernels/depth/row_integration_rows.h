@@ -48,11 +48,14 @@ RF_INLINE void RF_ROW_FN(rf_integrate_pixel)(RfRectifiedRig rig, RF_REAL beta, i
                                              RF_ROW_SPACE const float* e_proj_row, RF_ROW_SPACE const float* z_tri_row,
                                              RF_ROW_SPACE const unsigned char* run_row, RF_ROW_SPACE float* z_row,
                                              RF_LANE_TYPE(RfRunState) * state) {
+  const RF_INT code = RF_LOAD_CODE(run_row, u);
   RF_INT ok = RF_TRUE;
-  const RF_REAL increment =
-      RF_ROW_FN(rf_rk4_increment)(rig, beta, RF_MAX_INT(u - 1, 0), state->z, e_cam_row, e_proj_row, proj_width, &ok);
-  RF_ROW_FN(rf_integrate_pixel_step)
-  (u, pass, passes, RF_LOAD_CODE(run_row, u), RF_LOAD(z_tri_row, u), increment, ok, z_row, state);
+  RF_REAL increment = 0.0f;
+  if (RF_ANY(code == RF_RUN_CONTINUE)) {  // used only where the run continues
+    increment =
+        RF_ROW_FN(rf_rk4_increment)(rig, beta, RF_MAX_INT(u - 1, 0), state->z, e_cam_row, e_proj_row, proj_width, &ok);
+  }
+  RF_ROW_FN(rf_integrate_pixel_step)(u, pass, passes, code, RF_LOAD(z_tri_row, u), increment, ok, z_row, state);
 }
 
 // The whole row: `passes` shooting passes (>= 1) over every run. Writes z_row (NaN where masked).

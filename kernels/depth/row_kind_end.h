@@ -12,4 +12,5 @@
 #undef RF_STORE
 #undef RF_STORE_IF
 #undef RF_SELECT
+#undef RF_ANY
 #undef RF_LANE_TYPE

@@ -14,4 +14,5 @@
 #define RF_STORE(row, u, value) RF_LANES_STORE(value, u, row)
 #define RF_STORE_IF(row, mask, i, value) rf_lanes_store_if(row, mask, i, value)
 #define RF_SELECT(type, mask, if_set, otherwise) select((type)(otherwise), (type)(if_set), (mask))
+#define RF_ANY(mask) any(mask)
 #define RF_LANE_TYPE(name) RF_LANES_FN(name)

@@ -15,4 +15,5 @@
     if (mask) (row)[i] = (value);        \
   } while (0)
 #define RF_SELECT(type, mask, if_set, otherwise) ((mask) ? (type)(if_set) : (type)(otherwise))
+#define RF_ANY(mask) 1
 #define RF_LANE_TYPE(name) name

@@ -11,13 +11,15 @@
 // values: float and int, or their RF_LANES-wide vectors), RF_TRUE (a set mask: 1, or -1 in every lane), RF_TO_REAL,
 // RF_TO_INT (conversions), RF_LOAD, RF_STORE, RF_LOAD_CODE (element u of the row, the same u in every lane),
 // RF_GATHER (element i, i per lane), RF_STORE_IF (a store per lane where its mask is set), RF_SELECT(type, mask,
-// if_set, otherwise) (a choice per lane) and RF_LANE_TYPE(name) (a struct of such values). The shared code has no
-// branch on a row's values: a condition is a mask, the result of a comparison (0 or 1 on scalars, 0 or -1 per lane on
-// vectors), combined with & and |, and a choice is RF_SELECT, never ?: on a mask nor &&, || or !. On lanes RF_SELECT is
-// OpenCL's select(), a call that the compiler keeps whole: ?: on a vector mask lets clang rewrite the choice into
-// arithmetic on vectors of booleans (m ? x + 1 : x becomes x + zext(m)), which oclgrind 21.10 evaluates wrongly (zext
-// of a true lane gives 255, its negation -2), so the kernels must not depend on it. For the same reason a builtin never
-// mixes a vector and a scalar: oclgrind's min(int8, int) leaves 0 in lanes 2 to 7; min(i, (RF_INT)(n)) it gets right.
+// if_set, otherwise) (a choice per lane), RF_LANE_TYPE(name) (a struct of such values) and RF_ANY(mask) (whether any
+// lane's mask is set, on lanes; 1 on one row, whose pipelines on FPGA boards must not branch): the one branch allowed,
+// to skip work whose result no lane uses. Otherwise the shared code has no branch on a row's values: a condition is a
+// mask, the result of a comparison (0 or 1 on scalars, 0 or -1 per lane on vectors), combined with & and |, and a
+// choice is RF_SELECT, never ?: on a mask nor &&, || or !. On lanes RF_SELECT is OpenCL's select(), a call that the
+// compiler keeps whole: ?: on a vector mask lets clang rewrite the choice into arithmetic on vectors of booleans (m ? x
+// + 1 : x becomes x + zext(m)), which oclgrind 21.10 evaluates wrongly (zext of a true lane gives 255, its negation
+// -2), so the kernels must not depend on it. For the same reason a builtin never mixes a vector and a scalar:
+// oclgrind's min(int8, int) leaves 0 in lanes 2 to 7; min(i, (RF_INT)(n)) it gets right.
 #ifndef RFRECON_KERNELS_DEPTH_ROW_SPACE_H
 #define RFRECON_KERNELS_DEPTH_ROW_SPACE_H
 

@@ -1,6 +1,7 @@
 // Row solvers of the depth stage: the C++ references against the analytic plane (physics), and the OpenCL kernels
 // (both entries, on row tiles) against the references.
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -17,6 +18,7 @@
 namespace rfrecon::depth {
 namespace {
 
+using testing::expect_close;
 using testing::pseudo_noise;
 using testing::tilted_plane;
 
@@ -79,12 +81,21 @@ class RowSolversKernel : public ::testing::TestWithParam<KernelEntry> {
     devices_ = cl::open_devices("all");
     rows_ = testing::kernel_test_rows();
   }
+  // Both solvers on all of `rows` in one tile, against the references.
+  void expect_whole_tile_matches_reference(const RectifiedRows& rows) {
+    const IntegrationOptions passes{3};
+    const auto integrated = integrate_rows_reference(rows, passes, 0, rows.height);
+    expect_close(integrate_rows_opencl(devices_.front(), programs_, GetParam(), rows, passes, 0, rows.height),
+                 integrated);
+    const FusionOptions options;
+    expect_close(fuse_rows_opencl(devices_.front(), programs_, GetParam(), rows, integrated, options, 0, rows.height),
+                 fuse_rows_reference(rows, integrated, options, 0, rows.height));
+  }
+
   std::vector<cl::DeviceContext> devices_;
   cl::ProgramCache programs_;
   RectifiedRows rows_;
 };
-
-using testing::expect_close;
 
 TEST_P(RowSolversKernel, IntegrationMatchesReferenceOnTiles) {
   // Two tiles (rows 0-4 and 5-10) put together equal the reference over all rows: a tile only changes beta's origin.
@@ -100,8 +111,8 @@ TEST_P(RowSolversKernel, FusionMatchesReferenceOnTiles) {
   const FusionOptions options;
   const auto start = integrate_rows_reference(rows_, IntegrationOptions{3}, 0, rows_.height);
   const auto reference = fuse_rows_reference(rows_, start, options, 0, rows_.height);
-  const std::vector<float> start_first(start.begin(), start.begin() + 3 * 24),
-      start_second(start.begin() + 3 * 24, start.end());
+  const auto split = start.begin() + std::ptrdiff_t{3} * rows_.width;  // the first tile's 3 rows
+  const std::vector<float> start_first(start.begin(), split), start_second(split, start.end());
   auto first = fuse_rows_opencl(devices_.front(), programs_, GetParam(), rows_, start_first, options, 0, 3);
   const auto second =
       fuse_rows_opencl(devices_.front(), programs_, GetParam(), rows_, start_second, options, 3, rows_.height);
@@ -125,13 +136,20 @@ TEST_P(RowSolversKernel, RowsOfDifferentRunsSideBySideMatchReference) {
   code(12, 16) = RF_RUN_START;
   for (int u = 0; u < rows.width; ++u) code(17, u) = RF_RUN_MASKED;
   code(18, rows.width - 1) = RF_RUN_START;
-  const IntegrationOptions passes{3};
-  const auto integrated = integrate_rows_reference(rows, passes, 0, rows.height);
-  expect_close(integrate_rows_opencl(devices_.front(), programs_, GetParam(), rows, passes, 0, rows.height),
-               integrated);
-  const FusionOptions options;
-  expect_close(fuse_rows_opencl(devices_.front(), programs_, GetParam(), rows, integrated, options, 0, rows.height),
-               fuse_rows_reference(rows, integrated, options, 0, rows.height));
+  expect_whole_tile_matches_reference(rows);
+}
+
+TEST_P(RowSolversKernel, ColumnsMaskedInEveryRowMatchReference) {
+  // Columns 5 to 7 masked in all 19 rows, every run restarting at column 8: on the NDRange entry each group of lanes
+  // meets pixels where every lane is masked, and at column 4 a pixel where no lane links to the next, whose work the
+  // lanes skip (RF_ANY).
+  auto rows = testing::kernel_test_rows(19);
+  for (int v = 0; v < rows.height; ++v) {
+    std::uint8_t* row = rows.runs.data() + static_cast<std::size_t>(v) * static_cast<std::size_t>(rows.width);
+    for (int u = 5; u < 8; ++u) row[u] = RF_RUN_MASKED;
+    row[8] = RF_RUN_START;
+  }
+  expect_whole_tile_matches_reference(rows);
 }
 
 TEST(RowSolversKernelWidth, SingleEntriesRefuseRowsWiderThanTheirBuffers) {
