@@ -64,6 +64,7 @@ DeviceInfo query_device_info(const ::cl::Platform& platform, const ::cl::Device&
   info.fp16 = extensions.find("cl_khr_fp16") != std::string::npos;
   info.compiler_available = device_param<CL_DEVICE_COMPILER_AVAILABLE>(device) == CL_TRUE;
   info.profiling = (device_param<CL_DEVICE_QUEUE_PROPERTIES>(device) & CL_QUEUE_PROFILING_ENABLE) != 0;
+  info.host_unified_memory = device_param<CL_DEVICE_HOST_UNIFIED_MEMORY>(device) == CL_TRUE;
   info.intel_fpga = contains_ci(info.platform_name, "FPGA") && contains_ci(info.platform_vendor, "Intel");
   info.xilinx_fpga = contains_ci(info.platform_vendor, "Xilinx") || contains_ci(info.platform_name, "Xilinx");
   return info;
@@ -105,7 +106,8 @@ void to_json(nlohmann::json& json, const DeviceInfo& info) {
                         {"fp64", info.fp64},
                         {"fp16", info.fp16},
                         {"compiler_available", info.compiler_available},
-                        {"profiling", info.profiling}};
+                        {"profiling", info.profiling},
+                        {"host_unified_memory", info.host_unified_memory}};
 }
 
 }  // namespace rfrecon::cl

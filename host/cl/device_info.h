@@ -28,10 +28,11 @@ struct DeviceInfo {
   std::string opencl_c_version;
   bool fp64 = false;
   bool fp16 = false;
-  bool compiler_available = true;  // false on FPGA boards: programs must come from a precompiled binary
-  bool profiling = false;          // queues can time commands
-  bool intel_fpga = false;         // platform is Intel's FPGA SDK (aoc binaries)
-  bool xilinx_fpga = false;        // platform is AMD/Xilinx XRT (v++ binaries)
+  bool compiler_available = true;    // false on FPGA boards: programs must come from a precompiled binary
+  bool profiling = false;            // queues can time commands
+  bool host_unified_memory = false;  // kernels run on the host's memory: a borrowed host range needs no copy
+  bool intel_fpga = false;           // platform is Intel's FPGA SDK (aoc binaries)
+  bool xilinx_fpga = false;          // platform is AMD/Xilinx XRT (v++ binaries)
 };
 
 DeviceInfo query_device_info(const ::cl::Platform& platform, const ::cl::Device& device, int index);

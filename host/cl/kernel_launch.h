@@ -120,6 +120,12 @@ class GrowingBuffer {
   // The buffer, at least `bytes` (and 4) bytes large; flags apply when it is reallocated.
   ::cl::Buffer& at_least(const ::cl::Context& context, std::size_t bytes, cl_mem_flags flags);
   const ::cl::Buffer& buffer() const { return buffer_; }
+  // A buffer over data[0, count) instead (cl::borrow), until the next at_least reallocates.
+  template <typename T>
+  void lend(const ::cl::Context& context, const T* data, std::size_t count) {
+    buffer_ = borrow(context, data, count);
+    capacity_ = 0;
+  }
 
  private:
   ::cl::Buffer buffer_;

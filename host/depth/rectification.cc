@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -188,6 +189,8 @@ CameraGridTriangulation triangulate_camera_grid(const transport::CompressedTrans
   CameraGridTriangulation result;
   std::vector<cv::Point2f> correspondences;
   std::vector<int> with_correspondence;
+  correspondences.reserve(transport.camera_pixels());
+  with_correspondence.reserve(transport.camera_pixels());
   for (int c = 0; c < camera_size.area(); ++c) {
     const float x_p = transport.correspondence[2 * static_cast<std::size_t>(c)];
     if (!std::isnan(x_p)) {
@@ -254,9 +257,9 @@ RectifiedRows rectify_rows(const transport::CompressedTransport& transport, cons
   cv::divide(cv::max(cv::Mat(projector_size, CV_32F, const_cast<float*>(dual.data())), 0.0f), rectification.omega_proj,
              e_proj);
   std::vector<float> usable;
-  for (auto e = e_cam.begin<float>(); e != e_cam.end<float>(); ++e) {
-    if (!std::isnan(*e)) usable.push_back(*e);
-  }
+  usable.reserve(transport.camera_pixels());
+  const float* e_all = e_cam.ptr<float>();  // continuous
+  std::copy_if(e_all, e_all + e_cam.total(), std::back_inserter(usable), [](float e) { return !std::isnan(e); });
   // A common factor cancels in the ODE: scale both so that the camera's median is 1.
   if (!usable.empty()) {
     std::nth_element(usable.begin(), usable.begin() + static_cast<std::ptrdiff_t>(usable.size() / 2), usable.end());

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "host/cl/kernel_launch.h"
@@ -57,15 +58,14 @@ std::size_t offset(const RectifiedRows& rows, int row) {
   return static_cast<std::size_t>(row) * static_cast<std::size_t>(rows.width);
 }
 
-// The fusion's arguments checked; returns a copy of the starting depth to refine.
-std::vector<float> checked_fusion_start(const RectifiedRows& rows, const std::vector<float>& z_start,
-                                        const FusionOptions& options, int row_begin, int row_end) {
+// The fusion's arguments checked.
+void check_fusion_start(const RectifiedRows& rows, const std::vector<float>& z_start, const FusionOptions& options,
+                        int row_begin, int row_end) {
   check_range(rows, row_begin, row_end);
   check_options(options);
   if (z_start.size() != offset(rows, row_end) - offset(rows, row_begin)) {
     throw std::invalid_argument("fusion: the starting depth does not cover the row range");
   }
-  return z_start;
 }
 
 std::size_t proj_offset(const RectifiedRows& rows, int row) {
@@ -94,9 +94,15 @@ struct LaunchRows {
       std::copy(data, data + static_cast<std::size_t>(count) * w, out.begin());
       return out;
     }
-    for (std::size_t row = 0; row < static_cast<std::size_t>(count); ++row) {
-      const std::size_t group = row / RF_LANES, lane = row % RF_LANES;
-      for (std::size_t u = 0; u < w; ++u) out[(group * w + u) * RF_LANES + lane] = data[row * w + u];
+    // Written in order, lane by lane within each pixel of a group.
+    for (std::size_t group = 0; group < static_cast<std::size_t>(padded / RF_LANES); ++group) {
+      const std::size_t lanes_in_tile = std::min<std::size_t>(RF_LANES, count - group * RF_LANES);
+      const T* group_rows = data + group * RF_LANES * w;
+      T* group_out = out.data() + group * w * RF_LANES;
+      for (std::size_t u = 0; u < w; ++u) {
+        for (std::size_t lane = 0; lane < lanes_in_tile; ++lane)
+          group_out[u * RF_LANES + lane] = group_rows[lane * w + u];
+      }
     }
     return out;
   }
@@ -114,19 +120,25 @@ struct LaunchRows {
   }
 };
 
-// Device buffers of the inputs for rows [row_begin, row_end), in the launch's layout, padded with masked rows (zero
-// signal, no depth).
+// The inputs for rows [row_begin, row_end) in the launch's layout, padded with masked rows (zero signal, no depth),
+// and buffers over them (cl::borrow: no copy where kernels run on host memory). Keep it alive until the kernel ran.
 struct RowBuffers {
+  std::vector<float> e_cam_rows, e_proj_rows, z_tri_rows;
+  std::vector<std::uint8_t> run_rows;
   ::cl::Buffer e_cam, e_proj, z_tri, runs;
 
-  RowBuffers(cl::DeviceContext& device, const RectifiedRows& rows, int row_begin, const LaunchRows& launch) {
-    const auto upload = [&](const auto& data) { return cl::upload(device.context(), data, CL_MEM_READ_ONLY); };
-    e_cam = upload(launch.layout(rows.e_cam.data() + offset(rows, row_begin), rows.width, 0.0f));
-    e_proj = upload(launch.layout(rows.e_proj.data() + proj_offset(rows, row_begin), rows.proj_width, 0.0f));
-    z_tri = upload(launch.layout(rows.z_tri.data() + offset(rows, row_begin), rows.width,
-                                 std::numeric_limits<float>::quiet_NaN()));
-    runs = upload(launch.layout(rows.runs.data() + offset(rows, row_begin), rows.width,
-                                static_cast<std::uint8_t>(RF_RUN_MASKED)));
+  RowBuffers(cl::DeviceContext& device, const RectifiedRows& rows, int row_begin, const LaunchRows& launch)
+      : e_cam_rows(launch.layout(rows.e_cam.data() + offset(rows, row_begin), rows.width, 0.0f)),
+        e_proj_rows(launch.layout(rows.e_proj.data() + proj_offset(rows, row_begin), rows.proj_width, 0.0f)),
+        z_tri_rows(launch.layout(rows.z_tri.data() + offset(rows, row_begin), rows.width,
+                                 std::numeric_limits<float>::quiet_NaN())),
+        run_rows(launch.layout(rows.runs.data() + offset(rows, row_begin), rows.width,
+                               static_cast<std::uint8_t>(RF_RUN_MASKED))) {
+    const auto borrow = [&](const auto& data) { return cl::borrow(device.context(), data.data(), data.size()); };
+    e_cam = borrow(e_cam_rows);
+    e_proj = borrow(e_proj_rows);
+    z_tri = borrow(z_tri_rows);
+    runs = borrow(run_rows);
   }
 };
 
@@ -160,7 +172,8 @@ std::vector<float> integrate_rows_reference(const RectifiedRows& rows, const Int
 
 std::vector<float> fuse_rows_reference(const RectifiedRows& rows, const std::vector<float>& z_start,
                                        const FusionOptions& options, int row_begin, int row_end) {
-  std::vector<float> z = checked_fusion_start(rows, z_start, options, row_begin, row_end);
+  check_fusion_start(rows, z_start, options, row_begin, row_end);
+  std::vector<float> z = z_start;
   std::vector<float> c(static_cast<std::size_t>(rows.width)), d(c.size());
   for (int row = row_begin; row < row_end; ++row) {
     rf_fuse_row(rows.rig, rows.beta(row), rows.width, rows.proj_width, options.iterations,
@@ -182,41 +195,48 @@ std::vector<float> integrate_rows_opencl(cl::DeviceContext& device, cl::ProgramC
   const RowBuffers inputs(device, rows, row_begin, launch);
   // z also holds each run's seed between passes. It starts defined (NaN) because a run's first pixel reads its seed
   // of the pass before, and discards it in the first pass (oclgrind reports the load otherwise).
-  const std::vector<float> z(static_cast<std::size_t>(launch.padded) * static_cast<std::size_t>(rows.width),
-                             std::numeric_limits<float>::quiet_NaN());
-  const ::cl::Buffer z_buffer = cl::upload(device.context(), z, CL_MEM_READ_WRITE);
-  ::cl::Kernel kernel =
-      cl::make_kernel(programs.get(device, "depth/integrate.cl", build_options), "integrate_rows", entry);
-  run_rows(device, kernel, entry, rows, row_begin, launch, options.passes, inputs.e_cam, inputs.e_proj, inputs.z_tri,
-           inputs.runs, z_buffer);
-  return launch.rows_of(cl::download<float>(device.queue(), z_buffer, z.size()), rows.width);
+  std::vector<float> z(static_cast<std::size_t>(launch.padded) * static_cast<std::size_t>(rows.width),
+                       std::numeric_limits<float>::quiet_NaN());
+  {  // the buffer over z and the kernel go before z does
+    const ::cl::Buffer z_buffer = cl::share(device.context(), z);
+    ::cl::Kernel kernel =
+        cl::make_kernel(programs.get(device, "depth/integrate.cl", build_options), "integrate_rows", entry);
+    run_rows(device, kernel, entry, rows, row_begin, launch, options.passes, inputs.e_cam, inputs.e_proj, inputs.z_tri,
+             inputs.runs, z_buffer);
+    cl::sync_to_host(device.queue(), z_buffer);
+  }
+  return launch.rows_of(std::move(z), rows.width);
 }
 
 std::vector<float> fuse_rows_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
                                     const RectifiedRows& rows, const std::vector<float>& z_start,
                                     const FusionOptions& options, int row_begin, int row_end,
                                     std::string_view build_options) {
-  const std::vector<float> z = checked_fusion_start(rows, z_start, options, row_begin, row_end);
+  check_fusion_start(rows, z_start, options, row_begin, row_end);
   check_entry_width(rows, entry);
   const LaunchRows launch(entry, row_begin, row_end);
   const RowBuffers inputs(device, rows, row_begin, launch);
-  const std::vector<float> z_launched = launch.layout(z.data(), rows.width, 0.0f);
-  const ::cl::Buffer z_buffer = cl::upload(device.context(), z_launched, CL_MEM_READ_WRITE);
-  ::cl::Kernel kernel = cl::make_kernel(programs.get(device, "depth/fuse.cl", build_options), "fuse_rows", entry);
-  if (entry == KernelEntry::kSingleWorkItem) {  // its scratch is on chip
-    run_rows(device, kernel, entry, rows, row_begin, launch, options.iterations, options.sigma_disparity_px,
-             options.sigma_step_mm, inputs.e_cam, inputs.e_proj, inputs.z_tri, inputs.runs, z_buffer);
-  } else {
-    // Scratch of the Thomas sweeps, zeroed from the host: every element is written before it is read, but oclgrind
-    // follows speculative loads and does not count clEnqueueFillBuffer as initialisation.
-    const std::vector<float> zeros(z_launched.size(), 0.0f);
-    const ::cl::Buffer c_buffer = cl::upload(device.context(), zeros, CL_MEM_READ_WRITE);
-    const ::cl::Buffer d_buffer = cl::upload(device.context(), zeros, CL_MEM_READ_WRITE);
-    run_rows(device, kernel, entry, rows, row_begin, launch, options.iterations, options.sigma_disparity_px,
-             options.sigma_step_mm, inputs.e_cam, inputs.e_proj, inputs.z_tri, inputs.runs, z_buffer, c_buffer,
-             d_buffer);
+  std::vector<float> z_launched = launch.layout(z_start.data(), rows.width, 0.0f);
+  // The NDRange entry's scratch of the Thomas sweeps (the single work-item entry's is on chip), zeroed from the host:
+  // every element is written before it is read, but oclgrind follows speculative loads and does not count
+  // clEnqueueFillBuffer as initialisation.
+  const bool scratch = entry == KernelEntry::kNdRange;
+  std::vector<float> c(scratch ? z_launched.size() : 0, 0.0f), d(c.size(), 0.0f);
+  {  // the buffers over these vectors and the kernel go before the vectors do
+    const ::cl::Buffer z_buffer = cl::share(device.context(), z_launched);
+    ::cl::Kernel kernel = cl::make_kernel(programs.get(device, "depth/fuse.cl", build_options), "fuse_rows", entry);
+    if (scratch) {
+      const ::cl::Buffer c_buffer = cl::share(device.context(), c), d_buffer = cl::share(device.context(), d);
+      run_rows(device, kernel, entry, rows, row_begin, launch, options.iterations, options.sigma_disparity_px,
+               options.sigma_step_mm, inputs.e_cam, inputs.e_proj, inputs.z_tri, inputs.runs, z_buffer, c_buffer,
+               d_buffer);
+    } else {
+      run_rows(device, kernel, entry, rows, row_begin, launch, options.iterations, options.sigma_disparity_px,
+               options.sigma_step_mm, inputs.e_cam, inputs.e_proj, inputs.z_tri, inputs.runs, z_buffer);
+    }
+    cl::sync_to_host(device.queue(), z_buffer);
   }
-  return launch.rows_of(cl::download<float>(device.queue(), z_buffer, z_launched.size()), rows.width);
+  return launch.rows_of(std::move(z_launched), rows.width);
 }
 
 }  // namespace rfrecon::depth

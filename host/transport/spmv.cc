@@ -1,8 +1,12 @@
 // Transpose (counting sort), C++ references and OpenCL runs of the primal and dual products.
 #include "host/transport/spmv.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
+
+#include <opencv2/core.hpp>
 
 #include "host/cl/kernel_launch.h"
 
@@ -34,25 +38,58 @@ std::vector<float> run_spmv(cl::DeviceContext& device, cl::ProgramCache& program
 TransposedTransport transpose(const CompressedTransport& transport) {
   TransposedTransport transposed;
   transposed.projector_size = transport.setup.projector_size;
-  transposed.row_start.assign(transport.projector_pixels() + 1, 0);
-  for (const std::int32_t q : transport.indices) {
-    if (q >= 0) ++transposed.row_start[static_cast<std::size_t>(q) + 1];
-  }
-  for (std::size_t q = 0; q < transport.projector_pixels(); ++q) {
-    transposed.row_start[q + 1] += transposed.row_start[q];
+  const std::size_t projector_pixels = transport.projector_pixels();
+  const auto k = static_cast<std::size_t>(transport.k());
+  // The camera pixels in blocks, one per core (at most kMaxBlocks: each block counts every projector pixel): block b's
+  // entries of projector pixel q go after those of the blocks before it, so each row lists its camera pixels in
+  // ascending order, as one pass over them would.
+  constexpr int kMaxBlocks = 8;
+  const int blocks = std::clamp(cv::getNumThreads(), 1, kMaxBlocks);
+  const std::size_t camera_pixels = transport.camera_pixels();
+  const auto block_slots = [&](int b, std::size_t& begin, std::size_t& end) {
+    begin = camera_pixels * static_cast<std::size_t>(b) / static_cast<std::size_t>(blocks) * k;
+    end = camera_pixels * static_cast<std::size_t>(b + 1) / static_cast<std::size_t>(blocks) * k;
+  };
+  // next[b][q]: first the count of block b's entries in row q, then where its next one goes.
+  std::vector<std::vector<std::int32_t>> next(static_cast<std::size_t>(blocks));
+  const auto each_block = [&](const auto& body) {
+    cv::parallel_for_(cv::Range(0, blocks), [&](const cv::Range& range) {
+      for (int b = range.start; b < range.end; ++b) {
+        std::size_t begin = 0, end = 0;
+        block_slots(b, begin, end);
+        body(next[static_cast<std::size_t>(b)], begin, end);
+      }
+    });
+  };
+  each_block([&](std::vector<std::int32_t>& count, std::size_t begin, std::size_t end) {
+    count.assign(projector_pixels, 0);
+    for (std::size_t slot = begin; slot < end; ++slot) {
+      const std::int32_t q = transport.indices[slot];
+      if (q >= 0) ++count[static_cast<std::size_t>(q)];
+    }
+  });
+  transposed.row_start.assign(projector_pixels + 1, 0);
+  for (std::size_t q = 0; q < projector_pixels; ++q) {
+    std::int32_t at = transposed.row_start[q];
+    for (auto& block : next) {
+      const std::int32_t count = block[q];
+      block[q] = at;
+      at += count;
+    }
+    transposed.row_start[q + 1] = at;
   }
   const auto nonzeros = static_cast<std::size_t>(transposed.row_start.back());
   transposed.camera_pixel.resize(nonzeros);
   transposed.weights.resize(nonzeros);
-  std::vector<std::int32_t> next(transposed.row_start.begin(), transposed.row_start.end() - 1);
-  const auto k = static_cast<std::size_t>(transport.k());
-  for (std::size_t slot = 0; slot < transport.indices.size(); ++slot) {
-    const std::int32_t q = transport.indices[slot];
-    if (q < 0) continue;
-    const auto j = static_cast<std::size_t>(next[static_cast<std::size_t>(q)]++);
-    transposed.camera_pixel[j] = static_cast<std::int32_t>(slot / k);
-    transposed.weights[j] = transport.weights[slot];
-  }
+  each_block([&](std::vector<std::int32_t>& at, std::size_t begin, std::size_t end) {
+    for (std::size_t slot = begin; slot < end; ++slot) {
+      const std::int32_t q = transport.indices[slot];
+      if (q < 0) continue;
+      const auto j = static_cast<std::size_t>(at[static_cast<std::size_t>(q)]++);
+      transposed.camera_pixel[j] = static_cast<std::int32_t>(slot / k);
+      transposed.weights[j] = transport.weights[slot];
+    }
+  });
   return transposed;
 }
 

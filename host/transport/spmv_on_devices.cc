@@ -15,9 +15,14 @@ namespace {
 constexpr std::size_t kGranularity = 256;
 constexpr std::size_t kWorkGroup = 64;
 
-// Grows the slot's buffer to the tile's inputs and uploads them on the transfer queue, without waiting.
+// The tile's inputs in the slot's buffer: lent where the device runs kernels on the host's memory (no copy; the
+// scheduler uploads a slot again only after its tile has run), else uploaded on the transfer queue without waiting.
 template <typename T>
-void write_async(sched::Worker& worker, cl::GrowingBuffer& buffer, const T* data, std::size_t count) {
+void tile_input(sched::Worker& worker, cl::GrowingBuffer& buffer, const T* data, std::size_t count) {
+  if (worker.device().info().host_unified_memory && count > 0) {
+    buffer.lend(worker.device().context(), data, count);
+    return;
+  }
   const ::cl::Buffer& target = buffer.at_least(worker.device().context(), count * sizeof(T), CL_MEM_READ_ONLY);
   cl::write_buffer(worker.transfer_queue(), target, data, count, false);
 }
@@ -84,8 +89,8 @@ ProductRun primal_on_devices(std::vector<cl::DeviceContext>& devices, cl::Progra
   };
   work.upload = [&](sched::Worker& worker, const sched::Tile& tile, int slot) {
     auto& state = states[worker.position()];
-    write_async(worker, state.rows[slot], transport.indices.data() + tile.begin * k, tile.size() * k);
-    write_async(worker, state.weights[slot], transport.weights.data() + tile.begin * k, tile.size() * k);
+    tile_input(worker, state.rows[slot], transport.indices.data() + tile.begin * k, tile.size() * k);
+    tile_input(worker, state.weights[slot], transport.weights.data() + tile.begin * k, tile.size() * k);
   };
   work.compute = [&](sched::Worker& worker, const sched::Tile& tile, int slot) {
     auto& state = states[worker.position()];
@@ -113,9 +118,9 @@ ProductRun dual_on_devices(std::vector<cl::DeviceContext>& devices, cl::ProgramC
     rebased.assign(transposed.row_start.begin() + static_cast<std::ptrdiff_t>(tile.begin),
                    transposed.row_start.begin() + static_cast<std::ptrdiff_t>(tile.end) + 1);
     for (auto& start : rebased) start -= first;
-    write_async(worker, state.rows[slot], rebased.data(), rebased.size());
-    write_async(worker, state.columns[slot], transposed.camera_pixel.data() + first, nonzeros);
-    write_async(worker, state.weights[slot], transposed.weights.data() + first, nonzeros);
+    tile_input(worker, state.rows[slot], rebased.data(), rebased.size());
+    tile_input(worker, state.columns[slot], transposed.camera_pixel.data() + first, nonzeros);
+    tile_input(worker, state.weights[slot], transposed.weights.data() + first, nonzeros);
   };
   work.compute = [&](sched::Worker& worker, const sched::Tile& tile, int slot) {
     auto& state = states[worker.position()];
