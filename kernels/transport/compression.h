@@ -158,12 +158,17 @@ RF_INLINE void rf_dot_frames_lanes(unsigned c0, int frame_count, const int* offs
   const float8 dark = vload8(0, black + c0);
   float value[RF_FRAME_BATCH * RF_LANES];  // frame f of lane l at f * RF_LANES + l
   int dot[RF_FRAME_BATCH * RF_LANES];
+  // Every frame's samples loaded before the first is used, so that their cache misses overlap (the loads stalled
+  // one by one, docs/performance.md); unused frame buffers repeat frame 0, so every load is in bounds.
+  float8 sample[RF_FRAME_BATCH];
+#pragma unroll
+  for (int f = 0; f < RF_FRAME_BATCH; ++f) sample[f] = vload8(0, frames[f] + c0);
   int8 reached = 0;
   for (int f = 0; f < RF_FRAME_BATCH; ++f) {
     const int8 qx = RF_LANES_FN(rf_window_dot)(x0, ax, offsets_x[f], s);
     const int8 qy = RF_LANES_FN(rf_window_dot)(y0, ay, offsets_y[f], s);
     const int in_batch = f < frame_count;
-    const float8 v = in_batch ? vload8(0, frames[f] + c0) - dark : 0.0f;
+    const float8 v = in_batch ? sample[f] - dark : 0.0f;
     // The comparisons' masks (-1 or 0 per lane) combined bitwise: written with && between these vectors and the
     // scalar f < frame_count, no lane was ever lit under oclgrind (PoCL's were right).
     const int8 lit = (in_batch ? compressible : 0) & (v > grid.noise_threshold) & (qx >= 0) &
