@@ -150,7 +150,10 @@ class DeviceAccumulator final : public TransportAccumulator {
                       setup_.projector_size.width, setup_.projector_size.height, setup_.thresholds.noise, black_,
                       flags_, gray_x_, gray_y_, indices_, weights_, energy_, count());
     run(dot_frames_, entry_ == KernelEntry::kNdRange ? (n_ + RF_LANES - 1) / RF_LANES : n_);
-    lent_.fill({});
+    for (auto& lent : lent_) {  // each buffer released before its frame's memory may go
+      lent.buffer = ::cl::Buffer();
+      lent.frame.release();
+    }
     pending_ = 0;
     offsets_.fill(0);
   }
@@ -181,7 +184,7 @@ class DeviceAccumulator final : public TransportAccumulator {
       correspondence_;
   std::size_t gray_pending_ = 0;                    // Gray pairs in batch_ not yet decoded
   std::array<cl_uint, 2 * kGrayBatch> pairs_ = {};  // their (bit mask, axis)
-  // A dot frame lent to the NDRange entry: the frame and a buffer over its memory.
+  // A dot frame lent to the NDRange entry: the frame and a buffer over its memory (destroyed first).
   struct LentFrame {
     cv::Mat frame;
     ::cl::Buffer buffer;

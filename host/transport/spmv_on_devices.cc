@@ -29,13 +29,13 @@ void tile_input(sched::Worker& worker, cl::GrowingBuffer& buffer, const T* data,
 
 // One device's kernel, the light vector (same for every tile) and two sets of tile buffers.
 struct DeviceState {
+  std::vector<std::int32_t> rebased[2];  // dual: host copy of the rebased row starts (outlives the buffers over it)
   ::cl::Kernel kernel;
   ::cl::Buffer light;
   cl::GrowingBuffer rows[2];     // primal: ELL indices; dual: rebased CSR row starts
   cl::GrowingBuffer columns[2];  // dual: camera pixels
   cl::GrowingBuffer weights[2];
   cl::GrowingBuffer output[2];
-  std::vector<std::int32_t> rebased[2];  // dual: host copy of the rebased row starts while they upload
 };
 
 void prepare(sched::Worker& worker, DeviceState& state, cl::ProgramCache& programs, const char* name,
