@@ -100,7 +100,8 @@ TEST_F(TransportCliTest, ASecondRunLoadsItsProgramsFromTheProgramCache) {
   ::testing::internal::CaptureStdout();
   run_cli({"transport", capture_.string(), "-o", output_.string()});
   const std::string first = ::testing::internal::GetCapturedStdout();
-  EXPECT_THAT(first, ::testing::HasSubstr(" compiled, 0 loaded from the program cache")) << first;
+  // Something compiled into the empty store; with two identical devices (POCL_DEVICES="pthread pthread") one of them
+  // may load a program the other has just stored, so the first run's loads are not always 0.
   EXPECT_THAT(first, ::testing::Not(::testing::HasSubstr("programs: 0 compiled"))) << first;
   ::testing::internal::CaptureStdout();
   run_cli({"transport", capture_.string(), "-o", (dir_.path() / "again.h5").string()});
