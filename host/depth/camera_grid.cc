@@ -39,24 +39,25 @@ bool difference(const cv::Mat& points, int x, int y, int dx, int dy, cv::Vec3f& 
 
 cv::Mat sample_rectified_depth(const std::vector<float>& z_rect, const RectifiedRows& rows, const cv::Mat& rect_cam,
                                float jump_relative) {
-  cv::Mat z_grid(rect_cam.size(), CV_32F, cv::Scalar(kNoValue));
+  // Every pixel written by its row's loop, NaN where there is no depth: no serial fill of the image first.
+  cv::Mat z_grid(rect_cam.size(), CV_32F);
   const auto z_at = [&](int u, int v) { return z_rect[static_cast<std::size_t>(v) * rows.width + u]; };
-  for_each_row(rect_cam.rows, [&](int y) {
-    for (int x = 0; x < rect_cam.cols; ++x) {
-      const cv::Vec2f& position = rect_cam.at<cv::Vec2f>(y, x);
-      const float u = position[0], v = position[1];
-      if (!(u >= 0.0f && v >= 0.0f && u <= static_cast<float>(rows.width - 1) &&
-            v <= static_cast<float>(rows.height - 1))) {
-        continue;
-      }
-      const int u0 = std::min(static_cast<int>(u), rows.width - 2), v0 = std::min(static_cast<int>(v), rows.height - 2);
-      const float z[4] = {z_at(u0, v0), z_at(u0 + 1, v0), z_at(u0, v0 + 1), z_at(u0 + 1, v0 + 1)};
-      const auto [low, high] = std::minmax_element(z, z + 4);
-      if (!(*low > 0.0f) || !(*high <= *low * (1.0f + jump_relative))) continue;  // also rejects NaN
-      const float tu = u - static_cast<float>(u0), tv = v - static_cast<float>(v0);
-      const float top = (1.0f - tu) / z[0] + tu / z[1], bottom = (1.0f - tu) / z[2] + tu / z[3];
-      z_grid.at<float>(y, x) = 1.0f / ((1.0f - tv) * top + tv * bottom);
+  const auto depth_at = [&](const cv::Vec2f& position) {
+    const float u = position[0], v = position[1];
+    if (!(u >= 0.0f && v >= 0.0f && u <= static_cast<float>(rows.width - 1) &&
+          v <= static_cast<float>(rows.height - 1))) {
+      return kNoValue;
     }
+    const int u0 = std::min(static_cast<int>(u), rows.width - 2), v0 = std::min(static_cast<int>(v), rows.height - 2);
+    const float z[4] = {z_at(u0, v0), z_at(u0 + 1, v0), z_at(u0, v0 + 1), z_at(u0 + 1, v0 + 1)};
+    const auto [low, high] = std::minmax_element(z, z + 4);
+    if (!(*low > 0.0f) || !(*high <= *low * (1.0f + jump_relative))) return kNoValue;  // also rejects NaN
+    const float tu = u - static_cast<float>(u0), tv = v - static_cast<float>(v0);
+    const float top = (1.0f - tu) / z[0] + tu / z[1], bottom = (1.0f - tu) / z[2] + tu / z[3];
+    return 1.0f / ((1.0f - tv) * top + tv * bottom);
+  };
+  for_each_row(rect_cam.rows, [&](int y) {
+    for (int x = 0; x < rect_cam.cols; ++x) z_grid.at<float>(y, x) = depth_at(rect_cam.at<cv::Vec2f>(y, x));
   });
   return z_grid;
 }
@@ -65,15 +66,19 @@ outputs::Reconstruction camera_frame_maps(const cv::Mat& z_rect_mm, const cv::Ma
                                           const cv::Mat& R1) {
   const cv::Size size = z_rect_mm.size();
   outputs::Reconstruction maps;
-  maps.depth_mm = cv::Mat(size, CV_32F, cv::Scalar(kNoValue));
-  maps.points_mm = cv::Mat(size, CV_32FC3, cv::Scalar::all(kNoValue));
-  maps.normals = cv::Mat(size, CV_32FC3, cv::Scalar::all(kNoValue));
+  // Depth, points and normals: every pixel written by its row's loop (NaN where none), no serial fill first.
+  maps.depth_mm = cv::Mat(size, CV_32F);
+  maps.points_mm = cv::Mat(size, CV_32FC3);
+  maps.normals = cv::Mat(size, CV_32FC3);
   maps.confidence = cv::Mat(size, CV_32F, cv::Scalar(0.0f));
+  const cv::Vec3f no_point(kNoValue, kNoValue, kNoValue);
   cv::Matx33d cam_from_rect;
   cv::Mat(R1.t()).copyTo(cam_from_rect);
   for_each_row(size.height, [&](int y) {
     for (int x = 0; x < size.width; ++x) {
       const float z = z_rect_mm.at<float>(y, x);
+      maps.points_mm.at<cv::Vec3f>(y, x) = no_point;
+      maps.depth_mm.at<float>(y, x) = kNoValue;
       if (!(z > 0.0f)) continue;
       const cv::Vec2f& position = rect_cam.at<cv::Vec2f>(y, x);
       const cv::Vec3d X_rect(z * (position[0] - rig.cx_cam) / rig.f, z * (position[1] - rig.cy) / rig.f, z);
@@ -85,6 +90,7 @@ outputs::Reconstruction camera_frame_maps(const cv::Mat& z_rect_mm, const cv::Ma
   for_each_row(size.height, [&](int y) {
     for (int x = 0; x < size.width; ++x) {
       const cv::Vec3f point = maps.points_mm.at<cv::Vec3f>(y, x);
+      maps.normals.at<cv::Vec3f>(y, x) = no_point;
       cv::Vec3f along_x, along_y;
       if (!finite_point(point) || !difference(maps.points_mm, x, y, 1, 0, along_x) ||
           !difference(maps.points_mm, x, y, 0, 1, along_y)) {
