@@ -36,7 +36,7 @@ function(rfrecon_configure_kernel_params out_dir)
   rfrecon_check_kernel_param(RFRECON_INTEGRATE_INTERLEAVE 1 1024)
   rfrecon_check_kernel_param(RFRECON_FUSE_INTERLEAVE 1 1024)
   rfrecon_check_kernel_param(RFRECON_MAX_ROW_WIDTH 1 16384)
-  rfrecon_check_kernel_param(RFRECON_FRAME_BATCH 1 64)
+  rfrecon_check_kernel_param(RFRECON_FRAME_BATCH 2 64)  # a Gray pair per batch at least
   if(RFRECON_DOT_SPACINGS STREQUAL "")
     message(FATAL_ERROR "RFRECON_DOT_SPACINGS is empty: name at least one dot spacing")
   endif()

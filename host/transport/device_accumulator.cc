@@ -22,8 +22,7 @@ class DeviceAccumulator final : public TransportAccumulator {
         device_(device),
         entry_(entry),
         n_(setup.camera_size.area()),
-        state_(make_empty_transport(setup)),
-        gray_batch_(entry == KernelEntry::kSingleWorkItem ? kGrayBatch : 1) {
+        state_(make_empty_decoding(setup)) {
     if (setup.entries_per_pixel < 1) throw std::invalid_argument("transport: K must be at least 1");
     const ::cl::Program decode = programs.get(device, "transport/decode.cl", build_options);
     const ::cl::Program compress =
@@ -34,47 +33,42 @@ class DeviceAccumulator final : public TransportAccumulator {
     finalize_ = cl::make_kernel(compress, "finalize", entry);
 
     const ::cl::Context& context = device.context();
-    // Single work-item entries take a launch's frames in one buffer (dot frames, or Gray pairs' two frames each); the
-    // NDRange entries read each frame where it lies (borrow).
+    // Single work-item entries take a launch's frames in one buffer (dot frames, or Gray pairs' two frames each) and
+    // copies of white and black; the NDRange entries read each frame where it lies (lend).
     if (entry_ == KernelEntry::kSingleWorkItem) {
-      const std::size_t batch_frames = std::max<std::size_t>(setup.dot_spacing > 0 ? kBatch : 0, 2 * gray_batch_);
-      batch_ = cl::make_buffer<float>(context, batch_frames * n_);
-      pairs_buffer_ = cl::make_buffer<cl_uint>(context, pairs_.size());
+      batch_ = cl::make_buffer<float>(context, (setup.dot_spacing > 0 ? kBatch : 2 * kGrayBatch) * n_);
+      white_ = cl::make_buffer<float>(context, n_);
+      black_ = cl::make_buffer<float>(context, n_);
     }
-    white_ = cl::make_buffer<float>(context, n_);
-    black_ = cl::make_buffer<float>(context, n_);
+    pairs_buffer_ = cl::make_buffer<cl_uint>(context, pairs_.size());
     // The transport's own arrays, in their initial state, are the kernels' state: no copy in or out on runtimes that
-    // run kernels on host memory.
+    // run kernels on host memory. T's rows come with the first dot frame or finish() (share_rows).
     gray_x_ = cl::share(context, state_.gray_x);
     gray_y_ = cl::share(context, state_.gray_y);
     flags_ = cl::share(context, state_.flags);
-    indices_ = cl::share(context, state_.indices);
-    weights_ = cl::share(context, state_.weights);
     energy_ = cl::share(context, state_.direct_energy);
     correspondence_ = cl::share(context, state_.correspondence);
   }
 
   void add_gray_pair(GrayAxis axis, int bit, const cv::Mat& pattern, const cv::Mat& inverse) override {
-    const cl_uint mask = gray_bit_mask(setup_, axis, bit);
-    if (entry_ != KernelEntry::kSingleWorkItem) {  // this pair alone, read where it lies, into its axis' code word
-      const ::cl::Buffer pattern_buffer = borrow(pattern);  // kernel arguments do not hold their buffers
-      const ::cl::Buffer inverse_buffer = borrow(inverse);
-      cl::set_args(gray_pairs_, pattern_buffer, inverse_buffer, mask, setup_.thresholds.white,
-                   axis == GrayAxis::kColumns ? gray_x_ : gray_y_, flags_, count());
-      run(gray_pairs_);  // waits: the frames may go once it returns
-      return;
-    }
-    upload(batch_, pattern, 2 * gray_pending_ * n_);
-    upload(batch_, inverse, (2 * gray_pending_ + 1) * n_);
-    pairs_[2 * gray_pending_] = mask;
+    add_to_batch(2 * gray_pending_, pattern);
+    add_to_batch(2 * gray_pending_ + 1, inverse);
+    pairs_[2 * gray_pending_] = gray_bit_mask(setup_, axis, bit);
     pairs_[2 * gray_pending_ + 1] = axis == GrayAxis::kColumns ? 0 : 1;
-    if (++gray_pending_ == gray_batch_) decode_batch();
+    if (++gray_pending_ == kGrayBatch) decode_batch();
   }
 
   void finish_gray(const cv::Mat& white, const cv::Mat& black) override {
     if (gray_pending_ > 0) decode_batch();
-    upload(white_, white);
-    upload(black_, black);
+    if (entry_ == KernelEntry::kSingleWorkItem) {
+      upload(white_, white);
+      upload(black_, black);
+    } else {  // lent until finish(): the headers keep their memory alive
+      white_frame_ = white;
+      black_frame_ = black;
+      white_ = borrow(white);
+      black_ = borrow(black);
+    }
     cl::set_args(gray_finalize_, white_, black_, setup_.thresholds.black, setup_.projector_size.width,
                  setup_.projector_size.height, gray_x_, gray_y_, flags_, count());
     run(gray_finalize_);
@@ -82,11 +76,7 @@ class DeviceAccumulator final : public TransportAccumulator {
 
   void add_dot_frame(int offset_x, int offset_y, const cv::Mat& frame) override {
     check_dot_offsets(setup_, offset_x, offset_y);
-    if (entry_ == KernelEntry::kSingleWorkItem) {
-      upload(batch_, frame, pending_ * n_);
-    } else {  // lent until the batch is compressed: the header keeps the frame's memory alive
-      lent_[pending_] = {frame, borrow(frame)};
-    }
+    add_to_batch(pending_, frame);
     offsets_[2 * pending_] = offset_x;
     offsets_[2 * pending_ + 1] = offset_y;
     if (++pending_ == kBatch) compress_batch();
@@ -94,6 +84,7 @@ class DeviceAccumulator final : public TransportAccumulator {
 
   CompressedTransport finish() override {
     if (pending_ > 0) compress_batch();
+    share_rows();
     cl::set_args(finalize_, white_, black_, setup_.dot_spacing > 0 ? 1 : 0, setup_.projector_size.width,
                  setup_.thresholds.noise, flags_, gray_x_, gray_y_, indices_, weights_, energy_, correspondence_,
                  count());
@@ -101,7 +92,9 @@ class DeviceAccumulator final : public TransportAccumulator {
     for (const auto* buffer : {&gray_x_, &gray_y_, &flags_, &indices_, &weights_, &energy_, &correspondence_}) {
       cl::sync_to_host(device_.queue(), *buffer);
     }
-    gray_x_ = gray_y_ = flags_ = indices_ = weights_ = energy_ = correspondence_ = ::cl::Buffer();
+    gray_x_ = gray_y_ = flags_ = indices_ = weights_ = energy_ = correspondence_ = white_ = black_ = ::cl::Buffer();
+    white_frame_.release();  // after the buffers over it
+    black_frame_.release();
     return std::move(state_);
   }
 
@@ -125,35 +118,66 @@ class DeviceAccumulator final : public TransportAccumulator {
     return cl::borrow(device_.context(), frame.ptr<float>(), n_);
   }
 
-  // One single work-item launch over the pending Gray pairs; unused slots stay 0 (the kernel skips those pairs).
-  void decode_batch() {
-    // Not blocking: the in-order queue writes it before the launch, and run() waits for both before pairs_ changes.
-    cl::write_buffer(device_.queue(), pairs_buffer_, pairs_.data(), pairs_.size(), false);
-    cl::set_args(gray_pairs_, batch_, static_cast<cl_int>(gray_pending_), pairs_buffer_, setup_.thresholds.white,
-                 gray_x_, gray_y_, flags_, count());
-    run(gray_pairs_);
-    gray_pending_ = 0;
-    pairs_.fill(0);
+  // Frame `slot` of the batch: copied into batch_ (single work-item), or lent until the batch has run, the header
+  // keeping the frame's memory alive (NDRange).
+  void add_to_batch(std::size_t slot, const cv::Mat& frame) {
+    if (entry_ == KernelEntry::kSingleWorkItem) {
+      upload(batch_, frame, slot * n_);
+    } else {
+      lent_[slot] = {frame, borrow(frame)};
+    }
   }
 
-  // One launch over the pending frames; offsets of unused batch slots stay 0 (the kernel skips those frames).
-  void compress_batch() {
-    const ::cl::Buffer offsets = cl::upload(device_.context(), offsets_.data(), offsets_.size());
-    cl_uint frame_arguments = 1;
+  // Sets kernel's first arguments to the batch's frames: batch_, or the `count` lent frames then frame 0 again in the
+  // unused slots. Returns the index of the next argument.
+  cl_uint set_frame_arguments(::cl::Kernel& kernel, std::size_t count) {
     if (entry_ == KernelEntry::kSingleWorkItem) {
-      cl::set_args(dot_frames_, batch_);
-    } else {
-      for (std::size_t f = 0; f < kBatch; ++f) cl::set_args_from(dot_frames_, f, lent_[f < pending_ ? f : 0].buffer);
-      frame_arguments = kBatch;
+      cl::set_args(kernel, batch_);
+      return 1;
     }
-    cl::set_args_from(dot_frames_, frame_arguments, static_cast<cl_int>(pending_), offsets, setup_.dot_spacing,
-                      setup_.projector_size.width, setup_.projector_size.height, setup_.thresholds.noise, black_,
-                      flags_, gray_x_, gray_y_, indices_, weights_, energy_, count());
-    run(dot_frames_, entry_ == KernelEntry::kNdRange ? (n_ + RF_LANES - 1) / RF_LANES : n_);
+    for (std::size_t f = 0; f < kBatch; ++f) cl::set_args_from(kernel, f, lent_[f < count ? f : 0].buffer);
+    return kBatch;
+  }
+
+  // Runs kernel over the batch's pixels (NDRange: RF_LANES per work-item), waits, and releases the lent frames, each
+  // buffer before its frame's memory may go.
+  void run_batch(const ::cl::Kernel& kernel) {
+    run(kernel, entry_ == KernelEntry::kNdRange ? (n_ + RF_LANES - 1) / RF_LANES : n_);
     for (auto& lent : lent_) {  // each buffer released before its frame's memory may go
       lent.buffer = ::cl::Buffer();
       lent.frame.release();
     }
+  }
+
+  // One launch over the pending Gray pairs; unused slots stay 0 (the kernel skips those pairs).
+  void decode_batch() {
+    // Not blocking: the in-order queue writes it before the launch, and run() waits for both before pairs_ changes.
+    cl::write_buffer(device_.queue(), pairs_buffer_, pairs_.data(), pairs_.size(), false);
+    const cl_uint next = set_frame_arguments(gray_pairs_, 2 * gray_pending_);
+    cl::set_args_from(gray_pairs_, next, static_cast<cl_int>(gray_pending_), pairs_buffer_, setup_.thresholds.white,
+                      gray_x_, gray_y_, flags_, count());
+    run_batch(gray_pairs_);
+    gray_pending_ = 0;
+    pairs_.fill(0);
+  }
+
+  // T's empty rows, made and shared with the kernels once.
+  void share_rows() {
+    if (indices_() != nullptr) return;
+    add_empty_rows(state_);
+    indices_ = cl::share(device_.context(), state_.indices);
+    weights_ = cl::share(device_.context(), state_.weights);
+  }
+
+  // One launch over the pending frames; offsets of unused batch slots stay 0 (the kernel skips those frames).
+  void compress_batch() {
+    share_rows();
+    const ::cl::Buffer offsets = cl::upload(device_.context(), offsets_.data(), offsets_.size());
+    const cl_uint next = set_frame_arguments(dot_frames_, pending_);
+    cl::set_args_from(dot_frames_, next, static_cast<cl_int>(pending_), offsets, setup_.dot_spacing,
+                      setup_.projector_size.width, setup_.projector_size.height, setup_.thresholds.noise, black_,
+                      flags_, gray_x_, gray_y_, indices_, weights_, energy_, count());
+    run_batch(dot_frames_);
     pending_ = 0;
     offsets_.fill(0);
   }
@@ -173,25 +197,23 @@ class DeviceAccumulator final : public TransportAccumulator {
   KernelEntry entry_;
   std::size_t n_;
   CompressedTransport state_;  // the kernels' state, shared with them (cl::share) until finish() returns it
-  // Gray pairs per decode launch: a whole batch on FPGA boards (single work-item: one read-modify-write of each
-  // pixel's code words in DDR per batch), one on CPUs and GPUs, which decode a pair while its frames are still in
-  // cache (batched, PoCL's decode took twice as long: a launch reads 16 frames spread over the 84 MB batch).
-  std::size_t gray_batch_;
+  cv::Mat white_frame_,
+      black_frame_;  // NDRange entries: the memory white_ and black_ lend (declared first: outlives them)
   ::cl::Kernel gray_pairs_, gray_finalize_, dot_frames_, finalize_;
   // Single work-item entries: the batch of Gray pairs or of dot frames. All Gray pairs come before finish_gray, which
   // decodes the last batch before the first dot frame (the call order of TransportAccumulator).
   ::cl::Buffer batch_, pairs_buffer_, white_, black_, gray_x_, gray_y_, flags_, indices_, weights_, energy_,
       correspondence_;
-  std::size_t gray_pending_ = 0;                    // Gray pairs in batch_ not yet decoded
-  std::array<cl_uint, 2 * kGrayBatch> pairs_ = {};  // their (bit mask, axis)
-  // A dot frame lent to the NDRange entry: the frame and a buffer over its memory (destroyed first).
+  // A frame lent to the NDRange entries: the frame and a buffer over its memory (destroyed first).
   struct LentFrame {
     cv::Mat frame;
     ::cl::Buffer buffer;
   };
-  std::array<LentFrame, kBatch> lent_;
-  std::size_t pending_ = 0;                      // dot frames in batch_ or lent_ not yet compressed
-  std::array<cl_int, 2 * kBatch> offsets_ = {};  // their (x, y) dot offsets
+  std::array<LentFrame, kBatch> lent_;              // the batch's frames (Gray pair p: 2p and 2p + 1)
+  std::size_t gray_pending_ = 0;                    // Gray pairs in batch_ or lent_ not yet decoded
+  std::array<cl_uint, 2 * kGrayBatch> pairs_ = {};  // their (bit mask, axis)
+  std::size_t pending_ = 0;                         // dot frames in batch_ or lent_ not yet compressed
+  std::array<cl_int, 2 * kBatch> offsets_ = {};     // their (x, y) dot offsets
 };
 
 }  // namespace

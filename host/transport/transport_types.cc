@@ -1,22 +1,33 @@
-// Construction of an empty compressed transport; the kernels' K build option.
+// Construction of an empty compressed transport (on huge pages, host/core/huge_pages.h); the kernels' K build option.
 #include "host/transport/transport_types.h"
 
 #include <limits>
 
+#include "host/core/huge_pages.h"
+
 namespace rfrecon::transport {
 
-CompressedTransport make_empty_transport(const TransportSetup& setup) {
+CompressedTransport make_empty_decoding(const TransportSetup& setup) {
   CompressedTransport transport;
   transport.setup = setup;
   const std::size_t n = transport.camera_pixels();
-  const std::size_t slots = n * static_cast<std::size_t>(setup.entries_per_pixel);
-  transport.indices.assign(slots, -1);
-  transport.weights.assign(slots, 0.0f);
-  transport.correspondence.assign(2 * n, std::numeric_limits<float>::quiet_NaN());
-  transport.gray_x.assign(n, 0);
-  transport.gray_y.assign(n, 0);
-  transport.flags.assign(n, 0);
-  transport.direct_energy.assign(n, 0.0f);
+  assign_on_huge_pages(transport.correspondence, 2 * n, std::numeric_limits<float>::quiet_NaN());
+  assign_on_huge_pages(transport.gray_x, n, 0U);
+  assign_on_huge_pages(transport.gray_y, n, 0U);
+  assign_on_huge_pages(transport.flags, n, std::uint8_t{0});
+  assign_on_huge_pages(transport.direct_energy, n, 0.0f);
+  return transport;
+}
+
+void add_empty_rows(CompressedTransport& transport) {
+  const std::size_t slots = transport.camera_pixels() * static_cast<std::size_t>(transport.k());
+  assign_on_huge_pages(transport.indices, slots, -1);
+  assign_on_huge_pages(transport.weights, slots, 0.0f);
+}
+
+CompressedTransport make_empty_transport(const TransportSetup& setup) {
+  CompressedTransport transport = make_empty_decoding(setup);
+  add_empty_rows(transport);
   return transport;
 }
 

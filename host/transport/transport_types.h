@@ -85,4 +85,9 @@ struct CompressedTransport {
 // An empty transport for `setup`: gray codes 0, flags 0, every slot empty, energy 0, correspondence NaN.
 CompressedTransport make_empty_transport(const TransportSetup& setup);
 
+// The same without T's rows (indices and weights have no element): the decoding's state, which add_empty_rows
+// completes when the compression needs them, so that decoding does not pay for the rows' memory (N * K entries).
+CompressedTransport make_empty_decoding(const TransportSetup& setup);
+void add_empty_rows(CompressedTransport& transport);
+
 }  // namespace rfrecon::transport

@@ -1,29 +1,25 @@
 // Light transport compression (bodies in transport/compression.h): dot_frames_* streams a batch of up to
 // RF_FRAME_BATCH dot-grid frames into the ELL rows (the NDRange entry RF_LANES pixels per work-item), finalize_*
 // computes the sub-pixel correspondence. The NDRange entry takes the batch's frames as RF_FRAME_BATCH buffers
-// frame0, frame1, ... (the host lends it each frame's own memory; unused ones repeat frame0), the single work-item
-// entry in one (`frames`, frame f at f * n, as an FPGA board's DDR holds them). `offsets`: RF_FRAME_BATCH (x, y) dot
-// offsets (unused ones 0).
+// (common/frame_batch.h), the single work-item entry in one (`frames`, frame f at f * n, as an FPGA board's DDR holds
+// them). `offsets`: RF_FRAME_BATCH (x, y) dot offsets (unused ones 0).
 #include "common/target.h"
 
 // Exact agreement with the C++ reference: no fused multiply-add contraction.
 #pragma OPENCL FP_CONTRACT OFF
-#include "common/params.h"
+#include "common/frame_batch.h"
 #include "transport/compression.h"
 
-#define RF_FRAME_PARAMETER(f) __global const float* restrict frame##f
-#define RF_FRAME_ARGUMENT(f) frame##f
-
-__kernel void dot_frames_ndrange(RF_EACH_FRAME(RF_FRAME_PARAMETER), int frame_count,
-                                 __global const int* restrict offsets, int spacing, int projector_width,
-                                 int projector_height, float noise_threshold, __global const float* restrict black,
-                                 __global const uchar* restrict flags, __global const uint* restrict projector_x,
-                                 __global const uint* restrict projector_y, __global int* restrict indices,
-                                 __global float* restrict weights, __global float* restrict energy, uint n) {
+__kernel void dot_frames_ndrange(RF_FRAME_PARAMETERS, int frame_count, __global const int* restrict offsets,
+                                 int spacing, int projector_width, int projector_height, float noise_threshold,
+                                 __global const float* restrict black, __global const uchar* restrict flags,
+                                 __global const uint* restrict projector_x, __global const uint* restrict projector_y,
+                                 __global int* restrict indices, __global float* restrict weights,
+                                 __global float* restrict energy, uint n) {
   // Work-item i: pixels i RF_LANES .. (i + 1) RF_LANES - 1, in vector lanes; the last one's tail pixel by pixel.
   const uint c0 = get_global_id(0) * RF_LANES;
   if (c0 >= n) return;
-  __global const float* frames[RF_FRAME_BATCH] = {RF_EACH_FRAME(RF_FRAME_ARGUMENT)};
+  __global const float* frames[RF_FRAME_BATCH] = RF_FRAME_BUFFERS;
   int offsets_x[RF_FRAME_BATCH];
   int offsets_y[RF_FRAME_BATCH];
   rf_load_dot_offsets(offsets, offsets_x, offsets_y);

@@ -10,10 +10,11 @@
 //
 // Frames come in batches of up to RF_FRAME_BATCH (one array, frame f at f * n + c, or one array per frame): a pixel's
 // row is read once per batch, updated in registers frame after frame in the batch's order (so the result equals one
-// frame at a time, to the bit), and written back once, only when a frame of the batch reached it. The only division by
-// the run-time spacing, a = x0 mod s, is done once per pixel and batch; on FPGA targets it is a choice among divisions
-// by the compile-time RF_DOT_SPACINGS (the host refuses other spacings). The centroid's row of an entry, q / width, is
-// a multiplication by 1 / width (computed once) corrected to the exact quotient.
+// frame at a time, to the bit), and written back once, only when a frame of the batch reached it. The only remainder
+// by the run-time spacing, a = x0 mod s, is computed once per pixel and batch: on FPGA targets a choice among divisions
+// by the compile-time RF_DOT_SPACINGS (the host refuses other spacings), elsewhere a multiplication by 1 / s corrected
+// to the exact remainder. The centroid's row of an entry, q / width, is a multiplication by 1 / width (computed once)
+// corrected to the exact quotient.
 #ifndef RFRECON_KERNELS_TRANSPORT_COMPRESSION_H
 #define RFRECON_KERNELS_TRANSPORT_COMPRESSION_H
 
@@ -24,17 +25,25 @@
 #include "transport/flags.h"
 
 // The window arithmetic, on int for one pixel (names as below) and, in OpenCL C, on RF_LANES_INT for RF_LANES pixels
-// at once (names with _lanes: transport/dot_window.h).
+// at once (names with _lanes: transport/dot_window.h), with their conversions to and from float.
 #define RF_DOT_INT int
+#define RF_DOT_TO_REAL(x) ((float)(x))
+#define RF_DOT_TO_INT(x) ((int)(x))
 #define RF_DOT_FN(name) name
 #include "transport/dot_window.h"
 #undef RF_DOT_INT
+#undef RF_DOT_TO_REAL
+#undef RF_DOT_TO_INT
 #undef RF_DOT_FN
 #ifdef __OPENCL_VERSION__
 #define RF_DOT_INT RF_LANES_INT
+#define RF_DOT_TO_REAL(x) RF_LANES_TO_REAL(x)
+#define RF_DOT_TO_INT(x) RF_LANES_TO_INT(x)
 #define RF_DOT_FN(name) RF_LANES_FN(name)
 #include "transport/dot_window.h"
 #undef RF_DOT_INT
+#undef RF_DOT_TO_REAL
+#undef RF_DOT_TO_INT
 #undef RF_DOT_FN
 #endif
 

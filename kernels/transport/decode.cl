@@ -1,22 +1,48 @@
 // Gray code decoding (bodies in transport/gray_decode.h).
-//   gray_pairs_ndrange: one pattern/inverse pair per launch (CPUs and GPUs decode a pair while its two frames are
-//                       still in their caches; the host passes the frames' own memory), into its axis' code word.
-//   gray_pairs_single:  a batch of up to RF_GRAY_PAIR_BATCH pairs per launch (pair p's pattern at 2p * n, its inverse
-//                       at (2p + 1) * n; `pairs` holds RF_GRAY_PAIR_BATCH (bit mask, axis) pairs, axis 0: columns,
-//                       code_x; 1: rows, code_y), each pixel's state read and written once per batch (FPGA boards).
+//   gray_pairs_ndrange: a batch of up to RF_GRAY_PAIR_BATCH pattern/inverse pairs per launch, as RF_FRAME_BATCH
+//                       frame buffers (common/frame_batch.h: pair p's pattern is frame 2p, its inverse frame 2p + 1),
+//                       RF_LANES pixels per work-item.
+//   gray_pairs_single:  the same batch in one buffer (pair p's pattern at 2p * n, its inverse at (2p + 1) * n), one
+//                       pixel per iteration (FPGA boards).
+//   Both take `pairs`, RF_GRAY_PAIR_BATCH (bit mask, axis) pairs (axis 0: columns, code_x; 1: rows, code_y); each
+//   pixel's state is read and written once per batch.
 //   gray_finalize_*:    shadow mask from white/black, Gray -> binary, range check.
+#include "common/frame_batch.h"
 #include "common/target.h"
 #include "transport/gray_decode.h"
 
-__kernel void gray_pairs_ndrange(__global const float* restrict pattern, __global const float* restrict inverse,
-                                 uint bit_mask, float white_threshold, __global uint* restrict code,
+__kernel void gray_pairs_ndrange(RF_FRAME_PARAMETERS, int pair_count, __global const uint* restrict pairs,
+                                 float white_threshold, __global uint* restrict code_x, __global uint* restrict code_y,
                                  __global uchar* restrict flags, uint n) {
-  const uint c = get_global_id(0);
-  if (c >= n) return;
-  const uint bit = rf_gray_pair_bit(pattern[c], inverse[c], bit_mask);
-  if (bit) code[c] |= bit;
-  const uchar flag = rf_gray_pair_flag(pattern[c], inverse[c], white_threshold);
-  if (flag) flags[c] |= flag;
+  const uint c0 = get_global_id(0) * RF_LANES;
+  if (c0 >= n) return;
+  __global const float* frames[RF_FRAME_BATCH] = RF_FRAME_BUFFERS;
+  uint masks[RF_GRAY_PAIR_BATCH];
+  uint axes[RF_GRAY_PAIR_BATCH];
+  rf_load_gray_pairs(pairs, masks, axes);
+  if (c0 + RF_LANES <= n) {
+    rf_gray_pairs_lanes(c0, pair_count, masks, axes, white_threshold, frames, code_x, code_y, flags);
+    return;
+  }
+  for (uint c = c0; c < n; ++c) {  // the last work-item's tail, pixel by pixel
+    uint x = code_x[c];
+    uint y = code_y[c];
+    uchar f = flags[c];
+    for (int p = 0; p < pair_count; ++p) {
+      const float pattern = frames[2 * p][c];
+      const float inverse = frames[2 * p + 1][c];
+      const uint bit = rf_gray_pair_bit(pattern, inverse, masks[p]);
+      if (axes[p] != 0) {
+        y |= bit;
+      } else {
+        x |= bit;
+      }
+      f |= rf_gray_pair_flag(pattern, inverse, white_threshold);
+    }
+    code_x[c] = x;
+    code_y[c] = y;
+    flags[c] = f;
+  }
 }
 
 RF_SINGLE_TASK

@@ -9,14 +9,15 @@
 #ifndef RFRECON_KERNELS_TRANSPORT_GRAY_DECODE_H
 #define RFRECON_KERNELS_TRANSPORT_GRAY_DECODE_H
 
+#include "common/lanes.h"
 #include "common/params.h"
 #include "common/portable.h"
 #include "common/target.h"
 #include "transport/flags.h"
 
-// The pairs of a batch fill the compression's batch buffer of RF_FRAME_BATCH frames (at least one pair, for which
-// the host makes that buffer two frames long when RF_FRAME_BATCH is 1).
-#define RF_GRAY_PAIR_BATCH (RF_FRAME_BATCH >= 2 ? RF_FRAME_BATCH / 2 : 1)
+// The pairs of a batch fill the compression's batch of RF_FRAME_BATCH frames (at least 2,
+// cmake/EmbedKernelsParams.cmake).
+#define RF_GRAY_PAIR_BATCH (RF_FRAME_BATCH / 2)
 
 // What one pattern / inverse pair adds at a pixel: bit `mask` of its axis' code word where the pattern is the
 // brighter, and the low-contrast flag where the two differ by no more than the threshold.
@@ -59,6 +60,38 @@ RF_INLINE void rf_load_gray_pairs(RF_GLOBAL const unsigned* pairs, unsigned* mas
     axes[p] = pairs[(size_t)(2 * p + 1)];
   }
 }
+
+#ifdef __OPENCL_VERSION__
+// The batch at the RF_LANES pixels c0 .. c0 + RF_LANES - 1 at once, one per vector lane, pair p's pattern at
+// frames[2p] and its inverse at frames[2p + 1] (the NDRange entry): every frame's samples loaded before the first is
+// used, so that their cache misses overlap; unused pairs' buffers repeat frame 0, so every load is in bounds.
+RF_INLINE void rf_gray_pairs_lanes(uint c0, int pair_count, const uint* masks, const uint* axes, float white_threshold,
+                                   __global const float* const* frames, __global uint* code_x, __global uint* code_y,
+                                   __global uchar* flags) {
+  float8 pattern[RF_GRAY_PAIR_BATCH];
+  float8 inverse[RF_GRAY_PAIR_BATCH];
+#pragma unroll
+  for (int p = 0; p < RF_GRAY_PAIR_BATCH; ++p) {
+    pattern[p] = vload8(0, frames[2 * p] + c0);
+    inverse[p] = vload8(0, frames[2 * p + 1] + c0);
+  }
+  uint8 x = vload8(0, code_x + c0);
+  uint8 y = vload8(0, code_y + c0);
+  int8 low_contrast = 0;  // -1 or 0 per lane, as comparisons give
+  for (int p = 0; p < pair_count; ++p) {
+    const uint8 bit = as_uint8(pattern[p] > inverse[p]) & masks[p];
+    if (axes[p] != 0) {
+      y |= bit;
+    } else {
+      x |= bit;
+    }
+    low_contrast |= fabs(pattern[p] - inverse[p]) <= white_threshold;
+  }
+  vstore8(x, 0, code_x + c0);
+  vstore8(y, 0, code_y + c0);
+  vstore8(vload8(0, flags + c0) | convert_uchar8(low_contrast & (int)RF_FLAG_LOW_CONTRAST), 0, flags + c0);
+}
+#endif
 
 RF_INLINE unsigned rf_gray_to_binary(unsigned gray) {
   unsigned binary = gray;

@@ -89,6 +89,16 @@ void TransportKernelTest::expect_kernels_match_reference(int spacing, int k, int
   }
 }
 
+// The divider-free remainder of a window's start by the dot spacing equals x % s for every spacing the kernels
+// accept on CPUs (2 to 64) over every start of a projector up to 2^16 pixels wide, and near 2^22, the bound it states.
+TEST(CompressionHelpersTest, RemainderBySpacingIsExact) {
+  for (int s = 2; s <= 64; ++s) {
+    for (int x = 0; x < (1 << 16); ++x) ASSERT_EQ(rf_mod_spacing(x, s), x % s) << "x " << x << " s " << s;
+    for (int x = (1 << 22) - 4096; x < (1 << 22); ++x)
+      ASSERT_EQ(rf_mod_spacing(x, s), x % s) << "x " << x << " s " << s;
+  }
+}
+
 // The compression's divider-free row of a projector index equals the integer quotient for every projector width the
 // host accepts (up to 16384) over all indices of a projector of 2^24 pixels: stepped through, with every index near
 // a multiple of the width, where a float estimate would round across the row boundary.

@@ -1,0 +1,23 @@
+// Arrays filled on huge pages hold exactly the count and value asked for, whatever they held before.
+#include "host/core/huge_pages.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace rfrecon {
+namespace {
+
+TEST(HugePagesTest, AssignedArraysHoldOnlyTheValueWhateverTheyHeldBefore) {
+  for (const std::size_t count : {std::size_t{0}, std::size_t{1}, std::size_t{1000}, std::size_t{3} << 20}) {
+    std::vector<std::int32_t> values(count / 2 + 7, 5);
+    assign_on_huge_pages(values, count, -1);
+    ASSERT_EQ(values.size(), count);
+    EXPECT_TRUE(std::all_of(values.begin(), values.end(), [](std::int32_t v) { return v == -1; })) << count;
+  }
+}
+
+}  // namespace
+}  // namespace rfrecon
