@@ -197,8 +197,8 @@ class DeviceAccumulator final : public TransportAccumulator {
   KernelEntry entry_;
   std::size_t n_;
   CompressedTransport state_;  // the kernels' state, shared with them (cl::share) until finish() returns it
-  cv::Mat white_frame_,
-      black_frame_;  // NDRange entries: the memory white_ and black_ lend (declared first: outlives them)
+  // NDRange entries: the memory that white_ and black_ lend to the kernels (declared before them: outlives them).
+  cv::Mat white_frame_, black_frame_;
   ::cl::Kernel gray_pairs_, gray_finalize_, dot_frames_, finalize_;
   // Single work-item entries: the batch of Gray pairs or of dot frames. All Gray pairs come before finish_gray, which
   // decodes the last batch before the first dot frame (the call order of TransportAccumulator).
