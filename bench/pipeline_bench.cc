@@ -174,7 +174,8 @@ ScanRun run_scan(const capture::FrameSource& frames, bool gray_only, depth::Meth
 }
 
 std::size_t frame_count(bool gray_only) { return manifest(gray_only).frames.size(); }
-double frame_bytes() { return static_cast<double>(kCamera.area()) * sizeof(float); }  // as the kernels read them
+// The camera's 16-bit samples, as the kernels read them (white and black aside, made linear once on the host).
+double frame_bytes() { return static_cast<double>(kCamera.area()) * sizeof(std::uint16_t); }
 
 // The frames of manifest(gray_only) as the camera gave them (16-bit PNG samples), decoded once, handed over by a
 // callback.
@@ -192,8 +193,8 @@ capture::FrameSource frames_in_memory(bool gray_only) {
 
 // Fused pipeline from frames in memory. Counters, from the last iteration (the first builds the programs): each
 // stage's seconds, pipeline_seconds (all of them; the rig's geometry, computed once before, is rig_geometry_seconds),
-// the transport's minimal bytes (every frame read once as float, T written once) against the roofline, compression's
-// fraction of it (dot frames' bytes / compress seconds), the integration's Mpx/s.
+// the transport's minimal bytes (every frame's 16-bit samples read once, T written once) against the roofline,
+// compression's fraction of it (dot frames' bytes / compress seconds), the integration's Mpx/s.
 void BM_FusedScan(benchmark::State& state) {
   const capture::FrameSource frames = frames_in_memory(false);
   ScanRun run;

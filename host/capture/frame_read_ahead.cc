@@ -8,11 +8,13 @@
 namespace rfrecon::capture {
 
 FrameReadAhead::FrameReadAhead(const FrameSource& source, const CaptureManifest& manifest,
-                               std::vector<std::vector<std::size_t>> groups, int readers, std::size_t depth)
+                               std::vector<std::vector<std::size_t>> groups, int readers, std::size_t depth,
+                               FrameForm form)
     : source_(source),
       manifest_(manifest),
       groups_(std::move(groups)),
       depth_(std::max<std::size_t>(depth, 1)),
+      form_(form),
       slots_(groups_.size()) {
   if (readers < 1) throw std::invalid_argument("FrameReadAhead: readers must be at least 1");
   for (int r = 0; r < readers; ++r) readers_.emplace_back([this] { read_groups(); });
@@ -38,7 +40,7 @@ void FrameReadAhead::read_groups() {
     }
     Slot slot;
     try {
-      for (const std::size_t index : groups_[group]) slot.frames.push_back(source_.load(manifest_, index));
+      for (const std::size_t index : groups_[group]) slot.frames.push_back(source_.load(manifest_, index, form_));
     } catch (...) {
       slot.error = std::current_exception();
     }

@@ -18,9 +18,11 @@ class FrameReadAhead {
  public:
   // `groups[i]` lists the manifest indices of the frames taken together as group i (a Gray pair, a dot frame, or
   // none). `readers` threads read the groups in order, at most `depth` of them ahead of the next one taken, so at
-  // most `depth` groups' frames are in memory. `source` and `manifest` must outlive this object.
+  // most `depth` groups' frames are in memory; frames come in `form`. `source` and `manifest` must outlive this
+  // object.
   FrameReadAhead(const FrameSource& source, const CaptureManifest& manifest,
-                 std::vector<std::vector<std::size_t>> groups, int readers, std::size_t depth);
+                 std::vector<std::vector<std::size_t>> groups, int readers, std::size_t depth,
+                 FrameForm form = FrameForm::kLinear);
   // Stops the readers after the frames they are reading; frames not taken are dropped.
   ~FrameReadAhead();
   FrameReadAhead(const FrameReadAhead&) = delete;
@@ -41,6 +43,7 @@ class FrameReadAhead {
   const CaptureManifest& manifest_;
   const std::vector<std::vector<std::size_t>> groups_;
   const std::size_t depth_;
+  const FrameForm form_;
   std::mutex lock_;
   std::condition_variable changed_;
   std::vector<Slot> slots_;

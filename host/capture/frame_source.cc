@@ -17,8 +17,8 @@ FrameSource FrameSource::from_callback(RawFrame raw_frame, std::string name) {
   return source;
 }
 
-cv::Mat FrameSource::load(const CaptureManifest& manifest, std::size_t index) const {
-  if (!raw_frame_) return load_frame(capture_dir_, manifest, index);
+cv::Mat FrameSource::load(const CaptureManifest& manifest, std::size_t index, FrameForm form) const {
+  if (!raw_frame_) return load_frame(capture_dir_, manifest, index, form);
   const std::string label = describe(manifest, index);
   cv::Mat raw;
   {
@@ -26,7 +26,9 @@ cv::Mat FrameSource::load(const CaptureManifest& manifest, std::size_t index) co
     raw = raw_frame_(index);
   }
   if (raw.empty()) throw InputError(label + ": the source returned no image");
-  return linearize_frame(raw, manifest, label);
+  if (form == FrameForm::kLinear) return linearize_frame(raw, manifest, label);
+  check_raw_frame(raw, manifest, label);
+  return raw;
 }
 
 std::string FrameSource::describe(const CaptureManifest& manifest, std::size_t index) const {

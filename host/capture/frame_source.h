@@ -1,5 +1,5 @@
 // Where a capture's frames come from: the files its manifest names, or a function that hands them over (a camera
-// SDK, frames already in memory). Either way they come out linearised, as the transport stage reads them.
+// SDK, frames already in memory). Either way they come out linearised, or raw and checked, the same way.
 #pragma once
 
 #include <cstddef>
@@ -30,9 +30,10 @@ class FrameSource {
   // Frames from `raw_frame`; `name` stands for the source in error messages ("camera SDK", "frames in memory").
   static FrameSource from_callback(RawFrame raw_frame, std::string name);
 
-  // Frame `index`, linearised (CV_32F, [0, 1]: capture::linearize_frame). Throws InputError naming the file, or
-  // the source and frame, when it is missing, unreadable, mis-sized or of the wrong bit depth. Thread-safe.
-  cv::Mat load(const CaptureManifest& manifest, std::size_t index) const;
+  // Frame `index`, linearised (CV_32F, [0, 1]: capture::linearize_frame) or raw (checked: check_raw_frame). Throws
+  // InputError naming the file, or the source and frame, when it is missing, unreadable, mis-sized or of the wrong
+  // bit depth. Thread-safe.
+  cv::Mat load(const CaptureManifest& manifest, std::size_t index, FrameForm form = FrameForm::kLinear) const;
 
   // The frame's name in messages: its path, or "<name> frame <index> (<file>)".
   std::string describe(const CaptureManifest& manifest, std::size_t index) const;

@@ -2,9 +2,12 @@
 #include "host/capture/manifest.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <map>
 #include <set>
+#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -310,7 +313,40 @@ CaptureManifest manifest_from_opencv_layout(const fs::path& capture_dir, cv::Siz
   return manifest;
 }
 
-cv::Mat linearize_frame(const cv::Mat& raw, const CaptureManifest& manifest, const std::string& file) {
+SampleMap sample_map(const CaptureManifest& manifest) {
+  const double range = std::ldexp(1.0, manifest.bit_depth) - 1.0 - manifest.black_level;
+  return {static_cast<float>(manifest.black_level), static_cast<float>(1.0 / range)};
+}
+
+bool linear_response(const CaptureManifest& manifest) {
+  return response_gamma(manifest.camera_response, "manifest") == 1.0;
+}
+
+namespace {
+template <typename Sample>
+void linearize_rows(const cv::Mat& raw, cv::Mat& linear, SampleMap map) {
+  for (int y = 0; y < raw.rows; ++y) {
+    const Sample* in = raw.ptr<Sample>(y);
+    float* out = linear.ptr<float>(y);
+    for (int x = 0; x < raw.cols; ++x) out[x] = (static_cast<float>(in[x]) - map.black) * map.scale;
+  }
+}
+}  // namespace
+
+cv::Mat linearize_samples(const cv::Mat& raw, SampleMap map) {
+  if (raw.channels() != 1 || (raw.depth() != CV_8U && raw.depth() != CV_16U)) {
+    throw std::invalid_argument("linearize_samples: expected one channel of CV_8U or CV_16U samples");
+  }
+  cv::Mat linear(raw.size(), CV_32F);
+  if (raw.depth() == CV_8U) {
+    linearize_rows<std::uint8_t>(raw, linear, map);
+  } else {
+    linearize_rows<std::uint16_t>(raw, linear, map);
+  }
+  return linear;
+}
+
+void check_raw_frame(const cv::Mat& raw, const CaptureManifest& manifest, const std::string& file) {
   const int expected_depth = manifest.bit_depth == 8 ? CV_8U : CV_16U;
   if (raw.depth() != expected_depth) {
     throw InputError(file + ": " +
@@ -325,10 +361,11 @@ cv::Mat linearize_frame(const cv::Mat& raw, const CaptureManifest& manifest, con
                      " differs from the capture's camera size " + std::to_string(manifest.camera_size.width) + "x" +
                      std::to_string(manifest.camera_size.height));
   }
-  const double full_scale = std::ldexp(1.0, manifest.bit_depth) - 1.0;
-  cv::Mat linear;
-  raw.convertTo(linear, CV_32F, 1.0 / (full_scale - manifest.black_level),
-                -manifest.black_level / (full_scale - manifest.black_level));
+}
+
+cv::Mat linearize_frame(const cv::Mat& raw, const CaptureManifest& manifest, const std::string& file) {
+  check_raw_frame(raw, manifest, file);
+  cv::Mat linear = linearize_samples(raw, sample_map(manifest));
   const double gamma = response_gamma(manifest.camera_response, file);
   if (gamma == 1.0) return linear;
   linear.forEach<float>([gamma](float& value, const int*) {
@@ -337,10 +374,12 @@ cv::Mat linearize_frame(const cv::Mat& raw, const CaptureManifest& manifest, con
   return linear;
 }
 
-cv::Mat load_frame(const fs::path& capture_dir, const CaptureManifest& manifest, std::size_t index) {
+cv::Mat load_frame(const fs::path& capture_dir, const CaptureManifest& manifest, std::size_t index, FrameForm form) {
   const fs::path path = capture_dir / manifest.frames.at(index).file;
-  const cv::Mat raw = decode_image(path, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
-  return linearize_frame(raw, manifest, path.string());
+  cv::Mat raw = decode_image(path, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
+  if (form == FrameForm::kLinear) return linearize_frame(raw, manifest, path.string());
+  check_raw_frame(raw, manifest, path.string());
+  return raw;
 }
 
 }  // namespace rfrecon::capture

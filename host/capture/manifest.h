@@ -58,12 +58,31 @@ void write_manifest(const CaptureManifest& manifest, const std::filesystem::path
 // does not match.
 CaptureManifest manifest_from_opencv_layout(const std::filesystem::path& capture_dir, cv::Size projector_size);
 
-// Linear camera response in [0, 1] (black level removed, response curve undone) from a raw frame (CV_8U/CV_16U).
-// Throws InputError naming `file` when its size or depth does not match the manifest.
+// Raw camera samples to linear units: (sample - black) * scale in float arithmetic, so the black level is 0 exactly and
+// full scale 1. The transport kernels apply it to raw frames in registers (kernels/common/frame_batch.h).
+struct SampleMap {
+  float black = 0.0f;
+  float scale = 1.0f;
+};
+SampleMap sample_map(const CaptureManifest& manifest);
+// Whether the camera response is linear: frames are linear after sample_map alone (no response curve to undo).
+bool linear_response(const CaptureManifest& manifest);
+// `raw` (one channel, CV_8U or CV_16U) as CV_32F (sample - map.black) * map.scale, as the kernels compute it.
+cv::Mat linearize_samples(const cv::Mat& raw, SampleMap map);
+
+// Throws InputError naming `file` when a raw frame's size, depth or channel count does not match the manifest.
+void check_raw_frame(const cv::Mat& raw, const CaptureManifest& manifest, const std::string& file);
+
+// Linear camera response in [0, 1] (black level removed, response curve undone) from a raw frame (CV_8U/CV_16U):
+// check_raw_frame, linearize_samples, then the response curve.
 cv::Mat linearize_frame(const cv::Mat& raw, const CaptureManifest& manifest, const std::string& file);
 
-// Reads one frame of the manifest (any format imgcodecs reads) and returns it linearized (CV_32F, [0, 1]).
+// What loading gives: linear CV_32F frames, or the camera's raw samples (checked, not converted).
+enum class FrameForm { kLinear, kRaw };
+
+// Reads one frame of the manifest (any format imgcodecs reads) and returns it linearized (CV_32F, [0, 1]) or raw.
 // Throws InputError naming the file when it is missing, unreadable, mis-sized or of the wrong bit depth.
-cv::Mat load_frame(const std::filesystem::path& capture_dir, const CaptureManifest& manifest, std::size_t index);
+cv::Mat load_frame(const std::filesystem::path& capture_dir, const CaptureManifest& manifest, std::size_t index,
+                   FrameForm form = FrameForm::kLinear);
 
 }  // namespace rfrecon::capture

@@ -15,7 +15,8 @@ namespace rfrecon::transport {
 
 enum class GrayAxis { kColumns, kRows };
 
-// Frames are linear CV_32F camera images of setup.camera_size (host/capture/manifest.h load_frame).
+// Frames are camera images of setup.camera_size: white and black linear CV_32F (host/capture/manifest.h load_frame),
+// Gray and dot frames of setup.frame_depth (linear CV_32F, or raw samples that setup.samples makes linear).
 // Call order: add_gray_pair for every pair (any order), finish_gray, add_dot_frame for every offset, finish.
 class TransportAccumulator {
  public:
@@ -45,10 +46,10 @@ void check_kernel_dot_spacing(int dot_spacing);
 std::unique_ptr<TransportAccumulator> make_reference_accumulator(TransportSetup setup);
 
 // Kernels of kernels/transport/decode.cl and compress.cl; the ELL state stays on the device until finish(). Dot
-// frames are compressed RF_FRAME_BATCH at a time (the last batch at finish()); Gray pairs are decoded
-// RF_GRAY_PAIR_BATCH at a time by the single work-item entries (the last batch at finish_gray()) and one at a time by
-// the NDRange entries. build_options are added to the
-// programs' (tests build the single work-item entries with an FPGA target macro on PoCL).
+// frames are compressed RF_FRAME_BATCH at a time (the last batch at finish()), Gray pairs decoded RF_GRAY_PAIR_BATCH
+// at a time (the last batch at finish_gray()). Raw frames are made linear in the NDRange kernels, on the host for the
+// single work-item ones. build_options are added to the programs' (tests build the single work-item entries with an
+// FPGA target macro on PoCL).
 std::unique_ptr<TransportAccumulator> make_device_accumulator(TransportSetup setup, cl::DeviceContext& device,
                                                               cl::ProgramCache& programs, KernelEntry entry,
                                                               const std::string& build_options = {});

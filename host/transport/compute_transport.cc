@@ -158,9 +158,17 @@ class SubpixelGray {
   SubpixelGray(const TransportSetup& setup, StageClock& clock) : clock_(clock) {
     if (setup.dot_spacing == 0) gray_.emplace(setup.camera_size);
   }
-  void add(const Step& step, const std::vector<cv::Mat>& frames) {
+  // `frames` as the accumulators take them (setup.frame_depth): raw ones are made linear first.
+  void add(const Step& step, const std::vector<cv::Mat>& frames, const TransportSetup& setup) {
     if (!gray_ || step.kind != Step::Kind::kGrayPair) return;
-    clock_.time("subpixel", [&] { gray_->add_gray_pair(step.axis, frames[0], frames[1]); });
+    clock_.time("subpixel", [&] {
+      if (setup.frame_depth == CV_32F) {
+        gray_->add_gray_pair(step.axis, frames[0], frames[1]);
+      } else {
+        gray_->add_gray_pair(step.axis, capture::linearize_samples(frames[0], setup.samples),
+                             capture::linearize_samples(frames[1], setup.samples));
+      }
+    });
   }
   void refine(CompressedTransport& transport) const {
     if (gray_) clock_.time("subpixel", [&] { gray_->refine(transport); });
@@ -170,6 +178,11 @@ class SubpixelGray {
   StageClock& clock_;
   std::optional<GraySubpixel> gray_;
 };
+
+// How the Gray and dot frames are loaded for accumulators of `setup`.
+capture::FrameForm frame_form(const TransportSetup& setup) {
+  return setup.frame_depth == CV_32F ? capture::FrameForm::kLinear : capture::FrameForm::kRaw;
+}
 
 // The transport stage's side of the block runner: one device accumulator per camera row block.
 class TransportBlocks final : public sched::BlockTask {
@@ -187,8 +200,9 @@ class TransportBlocks final : public sched::BlockTask {
   void set_frames(std::vector<cv::Mat> frames) { frames_ = std::move(frames); }
 
   void prepare(sched::Worker& worker) override {
-    programs_.get(worker.device(), "transport/decode.cl");
-    programs_.get(worker.device(), "transport/compress.cl", transport_build_options(capture_.setup.entries_per_pixel));
+    for (const auto& request : transport_programs(capture_.setup)) {
+      programs_.get(worker.device(), request.kernel_path, request.options);
+    }
   }
 
   void create(sched::Worker& worker, std::size_t block) override {
@@ -208,7 +222,8 @@ class TransportBlocks final : public sched::BlockTask {
     }
     std::vector<cv::Mat> frames;
     for (std::size_t i = 0; i < step.frames.size(); ++i) {
-      frames.push_back(rows(replay ? source_.load(capture_.manifest, step.frames[i]) : frames_[i], block));
+      frames.push_back(rows(
+          replay ? source_.load(capture_.manifest, step.frames[i], frame_form(capture_.setup)) : frames_[i], block));
     }
     apply(*accumulator, step, frames, rows(capture_.white, block), rows(capture_.black, block));
   }
@@ -272,7 +287,7 @@ TransportRun compute_transport(const capture::FrameSource& frames, capture::Capt
     std::vector<cv::Mat> step_frames;
     for (const std::size_t i : step.frames) step_frames.push_back(load(capture.manifest, i));
     clock.time(step.stage(), [&] { apply(*accumulator, step, step_frames, capture.white, capture.black); });
-    subpixel.add(step, step_frames);
+    subpixel.add(step, step_frames, capture.setup);
   }
   subpixel.refine(run.transport);
   run.timings = clock.timings();
@@ -285,18 +300,20 @@ TransportRun compute_transport_on_devices(const capture::FrameSource& frames, ca
   if (readers < 1) throw UsageError("transport: --readers must be at least 1");
   entries.check_device_count(devices.size());
   StageClock clock;
-  clock.time("build programs", [&] {
-    cl::prepare_programs(
-        devices, programs,
-        {{"transport/decode.cl", ""}, {"transport/compress.cl", transport_build_options(setup.entries_per_pixel)}});
-  });
   Progress progress("transport", manifest.frames.size(), "frames");
   const auto load = [&](const capture::CaptureManifest& with_size, std::size_t i) { return frames.load(with_size, i); };
-  const OpenedCapture capture = clock.time("read frames", [&] {
+  OpenedCapture capture = clock.time("read frames", [&] {
     auto opened = open_frames(frames, std::move(manifest), setup, load);
     progress.advance(2);
     return opened;
   });
+  // With a linear response the kernels take the camera's raw samples and make them linear in registers: half the
+  // bytes of float frames (16-bit cameras), and no conversion on the reader threads.
+  if (capture::linear_response(capture.manifest)) {
+    capture.setup.frame_depth = capture.manifest.bit_depth == 8 ? CV_8U : CV_16U;
+    capture.setup.samples = capture::sample_map(capture.manifest);
+  }
+  clock.time("build programs", [&] { cl::prepare_programs(devices, programs, transport_programs(capture.setup)); });
   const std::vector<Step> steps = plan_steps(capture.index, capture.manifest);
   const auto rows = static_cast<std::size_t>(capture.setup.camera_size.height);
   const std::vector<sched::Tile> blocks =
@@ -311,12 +328,12 @@ TransportRun compute_transport_on_devices(const capture::FrameSource& frames, ca
   std::vector<std::vector<std::size_t>> groups(steps.size());
   std::transform(steps.begin(), steps.end(), groups.begin(), [](const Step& step) { return step.frames; });
   capture::FrameReadAhead read_ahead(frames, capture.manifest, std::move(groups), readers,
-                                     2 * static_cast<std::size_t>(readers));
+                                     2 * static_cast<std::size_t>(readers), frame_form(capture.setup));
   SubpixelGray subpixel(capture.setup, clock);
   for (std::size_t i = 0; i < steps.size(); ++i) {
     std::vector<cv::Mat> step_frames = clock.time("read frames", [&] { return read_ahead.take(i); });
     progress.advance(steps[i].frames.size());
-    subpixel.add(steps[i], step_frames);
+    subpixel.add(steps[i], step_frames, capture.setup);
     task.set_frames(std::move(step_frames));
     clock.time(steps[i].stage(), [&] { runner.run_step(i, steps[i].stage()); });
   }

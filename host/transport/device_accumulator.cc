@@ -1,10 +1,12 @@
 // The transport accumulator on one OpenCL device: kernels/transport/decode.cl and compress.cl. The transport's own
-// arrays are the kernels' state; NDRange entries read each frame where it lies, single work-item ones take batches.
+// arrays are the kernels' state; NDRange entries read each frame where it lies (raw samples made linear in the
+// kernels), single work-item ones take batches of linear frames.
 #include <algorithm>
 #include <array>
 #include <stdexcept>
 #include <string>
 
+#include "host/capture/manifest.h"
 #include "host/cl/kernel_launch.h"
 #include "host/transport/accumulator.h"
 #include "kernels/common/lanes.h"
@@ -24,9 +26,9 @@ class DeviceAccumulator final : public TransportAccumulator {
         n_(setup.camera_size.area()),
         state_(make_empty_decoding(setup)) {
     if (setup.entries_per_pixel < 1) throw std::invalid_argument("transport: K must be at least 1");
-    const ::cl::Program decode = programs.get(device, "transport/decode.cl", build_options);
-    const ::cl::Program compress =
-        programs.get(device, "transport/compress.cl", transport_build_options(setup.entries_per_pixel, build_options));
+    const std::vector<cl::ProgramRequest> requests = transport_programs(setup, build_options);
+    const ::cl::Program decode = programs.get(device, requests[0].kernel_path, requests[0].options);
+    const ::cl::Program compress = programs.get(device, requests[1].kernel_path, requests[1].options);
     gray_pairs_ = cl::make_kernel(decode, "gray_pairs", entry);
     gray_finalize_ = cl::make_kernel(decode, "gray_finalize", entry);
     dot_frames_ = cl::make_kernel(compress, "dot_frames", entry);
@@ -66,12 +68,12 @@ class DeviceAccumulator final : public TransportAccumulator {
     } else {  // lent until finish(): the headers keep their memory alive
       white_frame_ = white;
       black_frame_ = black;
-      white_ = borrow(white);
-      black_ = borrow(black);
+      white_ = borrow(white, CV_32F);
+      black_ = borrow(black, CV_32F);
     }
     cl::set_args(gray_finalize_, white_, black_, setup_.thresholds.black, setup_.projector_size.width,
                  setup_.projector_size.height, gray_x_, gray_y_, flags_, count());
-    run(gray_finalize_);
+    run(gray_finalize_, lanes_items());
   }
 
   void add_dot_frame(int offset_x, int offset_y, const cv::Mat& frame) override {
@@ -101,48 +103,55 @@ class DeviceAccumulator final : public TransportAccumulator {
  private:
   cl_uint count() const { return static_cast<cl_uint>(n_); }
 
-  void check_frame(const cv::Mat& frame) const {
-    if (frame.type() != CV_32FC1 || frame.size() != setup_.camera_size || !frame.isContinuous()) {
-      throw std::invalid_argument("transport: frames must be continuous CV_32FC1 of the camera size");
+  // Gray and dot frames are of setup_.frame_depth, white and black CV_32F.
+  void check_frame(const cv::Mat& frame, int depth) const {
+    if (frame.type() != CV_MAKETYPE(depth, 1) || frame.size() != setup_.camera_size || !frame.isContinuous()) {
+      throw std::invalid_argument("transport: frames must be continuous single-channel " +
+                                  cv::typeToString(CV_MAKETYPE(depth, 1)) + " of the camera size");
     }
   }
 
-  void upload(const ::cl::Buffer& buffer, const cv::Mat& frame, std::size_t offset = 0) {
-    check_frame(frame);
-    cl::write_buffer(device_.queue(), buffer, frame.ptr<float>(), n_, true, offset);
+  void upload(const ::cl::Buffer& buffer, const cv::Mat& linear, std::size_t offset = 0) {
+    check_frame(linear, CV_32F);
+    cl::write_buffer(device_.queue(), buffer, linear.ptr<float>(), n_, true, offset);
   }
 
   // The frame's own memory as a buffer: no copy on runtimes that run kernels on host memory (cl::borrow).
-  ::cl::Buffer borrow(const cv::Mat& frame) const {
-    check_frame(frame);
-    return cl::borrow(device_.context(), frame.ptr<float>(), n_);
+  ::cl::Buffer borrow(const cv::Mat& frame, int depth) const {
+    check_frame(frame, depth);
+    return cl::borrow(device_.context(), frame.data, n_ * frame.elemSize());
   }
 
-  // Frame `slot` of the batch: copied into batch_ (single work-item), or lent until the batch has run, the header
-  // keeping the frame's memory alive (NDRange).
+  // Frame `slot` of the batch: copied into batch_, linear (single work-item), or lent until the batch has run, the
+  // header keeping the frame's memory alive (NDRange).
   void add_to_batch(std::size_t slot, const cv::Mat& frame) {
-    if (entry_ == KernelEntry::kSingleWorkItem) {
+    if (entry_ == KernelEntry::kNdRange) {
+      lent_[slot] = {frame, borrow(frame, setup_.frame_depth)};
+    } else if (setup_.frame_depth == CV_32F) {
       upload(batch_, frame, slot * n_);
     } else {
-      lent_[slot] = {frame, borrow(frame)};
+      check_frame(frame, setup_.frame_depth);
+      upload(batch_, capture::linearize_samples(frame, setup_.samples), slot * n_);
     }
   }
 
   // Sets kernel's first arguments to the batch's frames: batch_, or the `count` lent frames then frame 0 again in the
-  // unused slots. Returns the index of the next argument.
+  // unused slots and the samples' linear map. Returns the index of the next argument.
   cl_uint set_frame_arguments(::cl::Kernel& kernel, std::size_t count) {
     if (entry_ == KernelEntry::kSingleWorkItem) {
       cl::set_args(kernel, batch_);
       return 1;
     }
     for (std::size_t f = 0; f < kBatch; ++f) cl::set_args_from(kernel, f, lent_[f < count ? f : 0].buffer);
-    return kBatch;
+    const bool raw = setup_.frame_depth != CV_32F;
+    cl::set_args_from(kernel, kBatch, raw ? setup_.samples.black : 0.0f, raw ? setup_.samples.scale : 1.0f);
+    return kBatch + 2;
   }
 
   // Runs kernel over the batch's pixels (NDRange: RF_LANES per work-item), waits, and releases the lent frames, each
   // buffer before its frame's memory may go.
   void run_batch(const ::cl::Kernel& kernel) {
-    run(kernel, entry_ == KernelEntry::kNdRange ? (n_ + RF_LANES - 1) / RF_LANES : n_);
+    run(kernel, lanes_items());
     for (auto& lent : lent_) {  // each buffer released before its frame's memory may go
       lent.buffer = ::cl::Buffer();
       lent.frame.release();
@@ -181,6 +190,9 @@ class DeviceAccumulator final : public TransportAccumulator {
     pending_ = 0;
     offsets_.fill(0);
   }
+
+  // The items of a kernel taking RF_LANES pixels per work-item: work-items (NDRange) or pixels (single work-item).
+  std::size_t lanes_items() const { return entry_ == KernelEntry::kNdRange ? (n_ + RF_LANES - 1) / RF_LANES : n_; }
 
   // Runs kernel over `items` (NDRange: work-items; default one per pixel) and waits for it.
   void run(const ::cl::Kernel& kernel) { run(kernel, n_); }

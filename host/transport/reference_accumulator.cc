@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "host/capture/manifest.h"
 #include "host/capture/protocol.h"
 #include "host/core/errors.h"
 #include "host/transport/accumulator.h"
@@ -40,11 +41,23 @@ void check_kernel_dot_spacing(int dot_spacing) {
 
 namespace {
 
-const float* pixels(const cv::Mat& frame, const TransportSetup& setup) {
-  if (frame.type() != CV_32FC1 || frame.size() != setup.camera_size || !frame.isContinuous()) {
-    throw std::invalid_argument("transport: frames must be continuous CV_32FC1 of the camera size");
+void check_frame(const cv::Mat& frame, int depth, const TransportSetup& setup) {
+  if (frame.type() != CV_MAKETYPE(depth, 1) || frame.size() != setup.camera_size || !frame.isContinuous()) {
+    throw std::invalid_argument("transport: frames must be continuous single-channel " +
+                                cv::typeToString(CV_MAKETYPE(depth, 1)) + " of the camera size");
   }
+}
+
+// White or black: linear CV_32F.
+const float* pixels(const cv::Mat& frame, const TransportSetup& setup) {
+  check_frame(frame, CV_32F, setup);
   return frame.ptr<float>();
+}
+
+// A Gray or dot frame of setup.frame_depth, linear: as it is, or raw samples through setup.samples.
+cv::Mat linear_frame(const cv::Mat& frame, const TransportSetup& setup) {
+  check_frame(frame, setup.frame_depth, setup);
+  return setup.frame_depth == CV_32F ? frame : capture::linearize_samples(frame, setup.samples);
 }
 
 std::uint32_t gray_to_binary(std::uint32_t gray) {
@@ -65,8 +78,10 @@ class ReferenceAccumulator final : public TransportAccumulator {
 
   void add_gray_pair(GrayAxis axis, int bit, const cv::Mat& pattern, const cv::Mat& inverse) override {
     const std::uint32_t mask = gray_bit_mask(t_.setup, axis, bit);
-    const float* p = pixels(pattern, t_.setup);
-    const float* inv = pixels(inverse, t_.setup);
+    const cv::Mat pattern_linear = linear_frame(pattern, t_.setup);
+    const cv::Mat inverse_linear = linear_frame(inverse, t_.setup);
+    const float* p = pattern_linear.ptr<float>();
+    const float* inv = inverse_linear.ptr<float>();
     auto& code = axis == GrayAxis::kColumns ? t_.gray_x : t_.gray_y;
     for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
       if (p[c] > inv[c]) code[c] |= mask;
@@ -93,7 +108,8 @@ class ReferenceAccumulator final : public TransportAccumulator {
 
   void add_dot_frame(int offset_x, int offset_y, const cv::Mat& frame) override {
     check_dot_offsets(t_.setup, offset_x, offset_y);
-    const float* f = pixels(frame, t_.setup);
+    const cv::Mat linear = linear_frame(frame, t_.setup);
+    const float* f = linear.ptr<float>();
     const float* b = black_.ptr<float>();
     const int s = t_.setup.dot_spacing;
     const cv::Size projector = t_.setup.projector_size;

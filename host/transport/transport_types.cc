@@ -1,4 +1,4 @@
-// Construction of an empty compressed transport (on huge pages, host/core/huge_pages.h); the kernels' K build option.
+// Construction of an empty compressed transport (on huge pages, host/core/huge_pages.h); the kernels' build options.
 #include "host/transport/transport_types.h"
 
 #include <limits>
@@ -35,6 +35,16 @@ std::string transport_build_options(int entries_per_pixel, const std::string& ex
   if (entries_per_pixel == RF_K) return extra;
   const std::string k = "-DRF_K=" + std::to_string(entries_per_pixel);
   return extra.empty() ? k : k + " " + extra;
+}
+
+std::vector<cl::ProgramRequest> transport_programs(const TransportSetup& setup, const std::string& extra) {
+  std::string decode = extra;
+  if (setup.frame_depth != CV_32F) {
+    const std::string sample = setup.frame_depth == CV_8U ? "-DRF_SAMPLE=uchar" : "-DRF_SAMPLE=ushort";
+    decode = extra.empty() ? sample : sample + " " + extra;
+  }
+  return {{"transport/decode.cl", decode},
+          {"transport/compress.cl", transport_build_options(setup.entries_per_pixel, decode)}};
 }
 
 }  // namespace rfrecon::transport

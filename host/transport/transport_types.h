@@ -7,7 +7,9 @@
 
 #include <opencv2/core.hpp>
 
+#include "host/capture/manifest.h"
 #include "host/cl/kernel_entry.h"
+#include "host/cl/program_cache.h"
 #include "kernels/common/params.h"
 #include "kernels/transport/flags.h"
 
@@ -55,12 +57,20 @@ struct TransportSetup {
   int dot_spacing = 0;           // s of the s x s dot grid; 0 = Gray code only (one entry per row)
   int entries_per_pixel = RF_K;  // K, by default the kernels' (kernels/common/params.h)
   Thresholds thresholds;
+  // The Gray and dot frames the accumulators take: linear CV_32F, or the camera's raw CV_8U or CV_16U samples, made
+  // linear with `samples` by the kernels (white and black are linear CV_32F either way).
+  int frame_depth = CV_32F;
+  capture::SampleMap samples;
 };
 
 // The build options of the transport kernels for K entries per pixel, then `extra`: "-DRF_K=16" for another K than
 // the parameters header's, nothing for RF_K itself, so that every stage shares one program per kernel file then (and
 // a board binary needs no option).
 std::string transport_build_options(int entries_per_pixel, const std::string& extra = {});
+
+// The programs of the transport accumulators for `setup`, each with its build options (then `extra`): decode.cl and
+// compress.cl, built for the frames' sample type (-DRF_SAMPLE=uchar or ushort for raw frames) and K.
+std::vector<cl::ProgramRequest> transport_programs(const TransportSetup& setup, const std::string& extra = {});
 
 // Compressed T: row c = camera pixel y * W + x, column q = projector pixel y * Wp + x. Entry k of row c is at
 // c * K + k, strongest first; index -1 (weight 0) marks an empty slot. Weights are T's values: linear camera

@@ -1,8 +1,9 @@
 // Light transport compression (bodies in transport/compression.h): dot_frames_* streams a batch of up to
 // RF_FRAME_BATCH dot-grid frames into the ELL rows (the NDRange entry RF_LANES pixels per work-item), finalize_*
 // computes the sub-pixel correspondence. The NDRange entry takes the batch's frames as RF_FRAME_BATCH buffers
-// (common/frame_batch.h), the single work-item entry in one (`frames`, frame f at f * n, as an FPGA board's DDR holds
-// them). `offsets`: RF_FRAME_BATCH (x, y) dot offsets (unused ones 0).
+// (common/frame_batch.h: RF_SAMPLE, made linear with sample_black and sample_scale), the single work-item entry in one
+// of linear floats (`frames`, frame f at f * n, as an FPGA board's DDR holds them). `offsets`: RF_FRAME_BATCH (x, y)
+// dot offsets (unused ones 0).
 #include "common/target.h"
 
 // Exact agreement with the C++ reference: no fused multiply-add contraction.
@@ -10,28 +11,29 @@
 #include "common/frame_batch.h"
 #include "transport/compression.h"
 
-__kernel void dot_frames_ndrange(RF_FRAME_PARAMETERS, int frame_count, __global const int* restrict offsets,
-                                 int spacing, int projector_width, int projector_height, float noise_threshold,
-                                 __global const float* restrict black, __global const uchar* restrict flags,
-                                 __global const uint* restrict projector_x, __global const uint* restrict projector_y,
-                                 __global int* restrict indices, __global float* restrict weights,
-                                 __global float* restrict energy, uint n) {
+__kernel void dot_frames_ndrange(RF_FRAME_PARAMETERS, float sample_black, float sample_scale, int frame_count,
+                                 __global const int* restrict offsets, int spacing, int projector_width,
+                                 int projector_height, float noise_threshold, __global const float* restrict black,
+                                 __global const uchar* restrict flags, __global const uint* restrict projector_x,
+                                 __global const uint* restrict projector_y, __global int* restrict indices,
+                                 __global float* restrict weights, __global float* restrict energy, uint n) {
   // Work-item i: pixels i RF_LANES .. (i + 1) RF_LANES - 1, in vector lanes; the last one's tail pixel by pixel.
   const uint c0 = get_global_id(0) * RF_LANES;
   if (c0 >= n) return;
-  __global const float* frames[RF_FRAME_BATCH] = RF_FRAME_BUFFERS;
+  __global const RF_SAMPLE* frames[RF_FRAME_BATCH] = RF_FRAME_BUFFERS;
+  const RfSampleMap map = {sample_black, sample_scale};
   int offsets_x[RF_FRAME_BATCH];
   int offsets_y[RF_FRAME_BATCH];
   rf_load_dot_offsets(offsets, offsets_x, offsets_y);
   const RfDotGrid grid = {spacing, projector_width, projector_height, noise_threshold};
   if (c0 + RF_LANES <= n) {
-    rf_dot_frames_lanes(c0, frame_count, offsets_x, offsets_y, grid, frames, black, flags, projector_x, projector_y,
-                        indices, weights, energy);
+    rf_dot_frames_lanes(c0, frame_count, offsets_x, offsets_y, grid, frames, map, black, flags, projector_x,
+                        projector_y, indices, weights, energy);
     return;
   }
   for (uint c = c0; c < n; ++c) {
     float sample[RF_FRAME_BATCH];
-    for (int f = 0; f < RF_FRAME_BATCH; ++f) sample[f] = f < frame_count ? frames[f][c] : 0.0f;
+    for (int f = 0; f < RF_FRAME_BATCH; ++f) sample[f] = f < frame_count ? rf_linear_sample(frames[f], c, map) : 0.0f;
     rf_dot_samples_pixel(c, sample, frame_count, offsets_x, offsets_y, grid, black, flags, projector_x, projector_y,
                          indices, weights, energy);
   }

@@ -23,6 +23,9 @@
 #include "common/portable.h"
 #include "common/target.h"
 #include "transport/flags.h"
+#ifdef __OPENCL_VERSION__
+#include "common/frame_batch.h"
+#endif
 
 // The window arithmetic, on int for one pixel (names as below) and, in OpenCL C, on RF_LANES_INT for RF_LANES pixels
 // at once (names with _lanes: transport/dot_window.h), with their conversions to and from float.
@@ -150,13 +153,14 @@ RF_INLINE void rf_dot_frames_pixel(unsigned c, unsigned n, int frame_count, cons
 }
 
 #ifdef __OPENCL_VERSION__
-// The RF_LANES pixels c0 .. c0 + RF_LANES - 1 at once, one per vector lane, frame f of the batch at frames[f]: the
-// batch's contributions in vector arithmetic, then the rows of the pixels a frame reached, one by one.
+// The RF_LANES pixels c0 .. c0 + RF_LANES - 1 at once, one per vector lane, frame f of the batch at frames[f] (samples
+// made linear with `map`): the batch's contributions in vector arithmetic, then the rows of the pixels a frame
+// reached, one by one.
 RF_INLINE void rf_dot_frames_lanes(unsigned c0, int frame_count, const int* offsets_x, const int* offsets_y,
-                                   RfDotGrid grid, __global const float* const* frames, __global const float* black,
-                                   __global const uchar* flags, __global const uint* projector_x,
-                                   __global const uint* projector_y, __global int* indices, __global float* weights,
-                                   __global float* energy) {
+                                   RfDotGrid grid, __global const RF_SAMPLE* const* frames, RfSampleMap map,
+                                   __global const float* black, __global const uchar* flags,
+                                   __global const uint* projector_x, __global const uint* projector_y,
+                                   __global int* indices, __global float* weights, __global float* energy) {
   const int8 compressible = RF_COMPRESSIBLE(convert_uint8(vload8(0, flags + c0)));
   if (!any(compressible)) return;  // pixels the projector does not light read no frame
   const int s = grid.spacing;
@@ -171,7 +175,7 @@ RF_INLINE void rf_dot_frames_lanes(unsigned c0, int frame_count, const int* offs
   // one by one, docs/performance.md); unused frame buffers repeat frame 0, so every load is in bounds.
   float8 sample[RF_FRAME_BATCH];
 #pragma unroll
-  for (int f = 0; f < RF_FRAME_BATCH; ++f) sample[f] = vload8(0, frames[f] + c0);
+  for (int f = 0; f < RF_FRAME_BATCH; ++f) sample[f] = rf_linear_sample_lanes(frames[f], c0, map);
   int8 reached = 0;
   for (int f = 0; f < RF_FRAME_BATCH; ++f) {
     const int8 qx = RF_LANES_FN(rf_window_dot)(x0, ax, offsets_x[f], s);

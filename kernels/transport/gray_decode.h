@@ -14,6 +14,9 @@
 #include "common/portable.h"
 #include "common/target.h"
 #include "transport/flags.h"
+#ifdef __OPENCL_VERSION__
+#include "common/frame_batch.h"
+#endif
 
 // The pairs of a batch fill the compression's batch of RF_FRAME_BATCH frames (at least 2,
 // cmake/EmbedKernelsParams.cmake).
@@ -63,17 +66,18 @@ RF_INLINE void rf_load_gray_pairs(RF_GLOBAL const unsigned* pairs, unsigned* mas
 
 #ifdef __OPENCL_VERSION__
 // The batch at the RF_LANES pixels c0 .. c0 + RF_LANES - 1 at once, one per vector lane, pair p's pattern at
-// frames[2p] and its inverse at frames[2p + 1] (the NDRange entry): every frame's samples loaded before the first is
-// used, so that their cache misses overlap; unused pairs' buffers repeat frame 0, so every load is in bounds.
+// frames[2p] and its inverse at frames[2p + 1] (the NDRange entry; samples made linear with `map`): every frame's
+// samples loaded before the first is used, so that their cache misses overlap; unused pairs' buffers repeat frame 0,
+// so every load is in bounds.
 RF_INLINE void rf_gray_pairs_lanes(uint c0, int pair_count, const uint* masks, const uint* axes, float white_threshold,
-                                   __global const float* const* frames, __global uint* code_x, __global uint* code_y,
-                                   __global uchar* flags) {
+                                   __global const RF_SAMPLE* const* frames, RfSampleMap map, __global uint* code_x,
+                                   __global uint* code_y, __global uchar* flags) {
   float8 pattern[RF_GRAY_PAIR_BATCH];
   float8 inverse[RF_GRAY_PAIR_BATCH];
 #pragma unroll
   for (int p = 0; p < RF_GRAY_PAIR_BATCH; ++p) {
-    pattern[p] = vload8(0, frames[2 * p] + c0);
-    inverse[p] = vload8(0, frames[2 * p + 1] + c0);
+    pattern[p] = rf_linear_sample_lanes(frames[2 * p], c0, map);
+    inverse[p] = rf_linear_sample_lanes(frames[2 * p + 1], c0, map);
   }
   uint8 x = vload8(0, code_x + c0);
   uint8 y = vload8(0, code_y + c0);
@@ -117,6 +121,31 @@ RF_INLINE void rf_gray_finalize_pixel(unsigned c, float white, float black, floa
   }
   flags[c] = f;
 }
+
+#ifdef __OPENCL_VERSION__
+// rf_gray_finalize_pixel for the RF_LANES pixels c0 .. c0 + RF_LANES - 1 at once, one per vector lane.
+RF_INLINE void rf_gray_finalize_lanes(uint c0, float8 white, float8 black, float black_threshold, int projector_width,
+                                      int projector_height, __global uint* code_x, __global uint* code_y,
+                                      __global uchar* flags) {
+  uint8 x = vload8(0, code_x + c0);
+  uint8 y = vload8(0, code_y + c0);
+  for (uint shift = 1; shift < 32; shift <<= 1) {
+    x ^= x >> shift;
+    y ^= y >> shift;
+  }
+  vstore8(x, 0, code_x + c0);
+  vstore8(y, 0, code_y + c0);
+  // Flag bits set by select() on the comparisons' masks: under oclgrind, a mask of (... == 0) ANDed with a flag bit
+  // gave every bit (PoCL's were right).
+  const int8 none = 0;
+  int8 f = convert_int8(vload8(0, flags + c0));
+  f |= select(none, (int8)RF_FLAG_SHADOW, white - black <= black_threshold);
+  f |= select(none, (int8)RF_FLAG_OUT_OF_RANGE, (x >= (uint)projector_width) | (y >= (uint)projector_height));
+  const int8 invalid = f & (int)(RF_FLAG_SHADOW | RF_FLAG_LOW_CONTRAST | RF_FLAG_OUT_OF_RANGE);
+  f |= select(none, (int8)RF_FLAG_VALID, invalid == 0);
+  vstore8(convert_uchar8(f), 0, flags + c0);
+}
+#endif
 
 // The single work-item loops over the n pixels (the OpenCL `_single` entries and the HLS tops); the batch's pairs
 // copied on chip first.

@@ -59,6 +59,26 @@ TEST_F(FrameSourceTest, CallbackFramesEqualTheFilesLinearised) {
   EXPECT_NEAR(memory.load(manifest_, 0).at<float>(0, 0), std::pow(36.0 / 4031.0, 2.2), 1e-9);
 }
 
+TEST_F(FrameSourceTest, RawFramesAreCheckedButNotConverted) {
+  const FrameSource files(dir_.path());
+  const FrameSource memory = FrameSource::from_callback([this](std::size_t i) { return raw(i); }, "camera");
+  for (std::size_t i = 0; i < manifest_.frames.size(); ++i) {
+    for (const FrameSource* source : {&files, &memory}) {
+      const cv::Mat got = source->load(manifest_, i, FrameForm::kRaw);
+      ASSERT_EQ(got.type(), CV_16UC1);
+      EXPECT_EQ(cv::norm(got, raw(i), cv::NORM_INF), 0.0) << i;
+    }
+  }
+  const auto eight_bit = FrameSource::from_callback(
+      [this](std::size_t) { return cv::Mat(manifest_.camera_size, CV_8UC1, cv::Scalar(9)); }, "camera SDK");
+  try {
+    (void)eight_bit.load(manifest_, 3, FrameForm::kRaw);
+    ADD_FAILURE() << "an 8-bit frame of a 12-bit capture was accepted raw";
+  } catch (const InputError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("camera SDK frame 3 (frame_3.png)"));
+  }
+}
+
 TEST_F(FrameSourceTest, BadCallbackFramesNameTheSourceAndFrame) {
   const auto error_of = [this](const FrameSource& source) {
     try {

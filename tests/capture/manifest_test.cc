@@ -110,6 +110,27 @@ TEST_F(ManifestTest, LinearizeUndoesBlackLevelAndGamma) {
   EXPECT_NEAR(linear.at<float>(0, 1), 1.0, 1e-6);
 }
 
+// The map the kernels apply to raw samples: the black level to 0 exactly, every sample within one rounding of the
+// exact (sample - black) / (full - black); only a linear response needs nothing more.
+TEST_F(ManifestTest, SampleMapPutsBlackAtZeroAndFullScaleAtOne) {
+  CaptureManifest manifest;
+  manifest.bit_depth = 12;
+  manifest.black_level = 95;
+  const SampleMap map = sample_map(manifest);
+  cv::Mat raw(1, 4096, CV_16UC1);
+  for (int i = 0; i < raw.cols; ++i) raw.at<uint16_t>(0, i) = static_cast<uint16_t>(i);
+  const cv::Mat linear = linearize_samples(raw, map);
+  EXPECT_EQ(linear.at<float>(0, 95), 0.0f);
+  EXPECT_NEAR(linear.at<float>(0, 4095), 1.0, 1e-6);
+  for (int i = 0; i < raw.cols; ++i) {
+    // The scale's and the product's roundings, values up to about 1: well under 1e-6.
+    ASSERT_NEAR(linear.at<float>(0, i), (i - 95.0) / 4000.0, 1e-6) << i;
+  }
+  EXPECT_TRUE(linear_response(manifest));
+  manifest.camera_response = "gamma:2.2";
+  EXPECT_FALSE(linear_response(manifest));
+}
+
 TEST_F(ManifestTest, LinearizeRejectsWrongDepthAndSize) {
   CaptureManifest manifest;
   manifest.bit_depth = 16;

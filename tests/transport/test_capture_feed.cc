@@ -64,6 +64,11 @@ std::vector<cv::Mat> linearize(const std::vector<cv::Mat>& frames) {
 
 CompressedTransport feed_all(TransportAccumulator& accumulator, const std::vector<capture::Pattern>& sequence,
                              const std::vector<cv::Mat>& linear_frames) {
+  return feed_all(accumulator, sequence, linear_frames, linear_frames);
+}
+
+CompressedTransport feed_all(TransportAccumulator& accumulator, const std::vector<capture::Pattern>& sequence,
+                             const std::vector<cv::Mat>& frames, const std::vector<cv::Mat>& linear_frames) {
   cv::Mat white;
   cv::Mat black;
   for (std::size_t i = 0; i < sequence.size(); ++i) {
@@ -73,13 +78,13 @@ CompressedTransport feed_all(TransportAccumulator& accumulator, const std::vecto
     if ((pattern.kind == PatternKind::kGrayColumn || pattern.kind == PatternKind::kGrayRow) && !pattern.inverse) {
       // make_protocol puts each inverse right after its pattern.
       const GrayAxis axis = pattern.kind == PatternKind::kGrayColumn ? GrayAxis::kColumns : GrayAxis::kRows;
-      accumulator.add_gray_pair(axis, pattern.bit, linear_frames[i], linear_frames[i + 1]);
+      accumulator.add_gray_pair(axis, pattern.bit, frames[i], frames[i + 1]);
     }
   }
   accumulator.finish_gray(white, black);
   for (std::size_t i = 0; i < sequence.size(); ++i) {
     if (sequence[i].kind == PatternKind::kDot) {
-      accumulator.add_dot_frame(sequence[i].dot_offset_x, sequence[i].dot_offset_y, linear_frames[i]);
+      accumulator.add_dot_frame(sequence[i].dot_offset_x, sequence[i].dot_offset_y, frames[i]);
     }
   }
   return accumulator.finish();

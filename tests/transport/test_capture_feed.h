@@ -42,6 +42,9 @@ std::vector<cv::Mat> linearize(const std::vector<cv::Mat>& frames);
 // Gray pairs, white/black, dot frames, finish: the whole capture held in memory.
 CompressedTransport feed_all(TransportAccumulator& accumulator, const std::vector<capture::Pattern>& sequence,
                              const std::vector<cv::Mat>& linear_frames);
+// The same with the Gray and dot frames from `frames` (raw samples, say) and white and black from `linear_frames`.
+CompressedTransport feed_all(TransportAccumulator& accumulator, const std::vector<capture::Pattern>& sequence,
+                             const std::vector<cv::Mat>& frames, const std::vector<cv::Mat>& linear_frames);
 
 // The setup of a capture of `frames` (camera size of the first frame).
 TransportSetup setup_for(const std::vector<cv::Mat>& frames, cv::Size projector_size, int dot_spacing, int k);

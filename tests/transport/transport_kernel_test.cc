@@ -89,6 +89,45 @@ void TransportKernelTest::expect_kernels_match_reference(int spacing, int k, int
   }
 }
 
+// Raw camera samples, 8-bit and 10-bit in 16-bit words with a black level, made linear in the kernels: the same
+// transport, to the bit, as the reference given the host's linear frames (capture::linearize_samples), on both
+// entries (the single work-item one linearises on the host), and as the reference given the raw frames.
+TEST_F(TransportKernelTest, RawSamplesMadeLinearInTheKernelsMatchReferenceExactly) {
+  const auto capture = tiny_capture(5);
+  struct Camera {
+    int depth;
+    double black_level;
+    double full_scale;
+  };
+  for (const Camera camera : {Camera{CV_8U, 0.0, 255.0}, Camera{CV_8U, 12.0, 255.0}, Camera{CV_16U, 64.0, 1023.0}}) {
+    SCOPED_TRACE(cv::depthToString(camera.depth) + std::string(" black level ") + std::to_string(camera.black_level));
+    const capture::SampleMap map{static_cast<float>(camera.black_level),
+                                 static_cast<float>(1.0 / (camera.full_scale - camera.black_level))};
+    std::vector<cv::Mat> raw;
+    std::vector<cv::Mat> linear;
+    for (const auto& frame : capture.frames) {  // 8-bit readings rescaled to the camera's range above its black level
+      cv::Mat samples;
+      frame.convertTo(samples, camera.depth, (camera.full_scale - camera.black_level) / 255.0, camera.black_level);
+      raw.push_back(samples);
+      linear.push_back(capture::linearize_samples(samples, map));
+    }
+    auto setup = testing::setup_for(linear, capture.scene.projector_size, 5, 4);
+    auto reference = make_reference_accumulator(setup);
+    const auto expected = testing::feed_all(*reference, capture.sequence, linear);
+    setup.frame_depth = camera.depth;
+    setup.samples = map;
+    expect_same_transport(testing::feed_all(*make_reference_accumulator(setup), capture.sequence, raw, linear),
+                          expected);
+    for (auto& device : devices_) {
+      for (const auto entry : kEntries) {
+        SCOPED_TRACE(cl::describe(device.info()) + (entry == KernelEntry::kNdRange ? " ndrange" : " single"));
+        auto accumulator = make_device_accumulator(setup, device, programs_, entry);
+        expect_same_transport(testing::feed_all(*accumulator, capture.sequence, raw, linear), expected);
+      }
+    }
+  }
+}
+
 // The divider-free remainder of a window's start by the dot spacing equals x % s for every spacing the kernels
 // accept on CPUs (2 to 64) over every start of a projector up to 2^16 pixels wide, and near 2^22, the bound it states.
 TEST(CompressionHelpersTest, RemainderBySpacingIsExact) {
