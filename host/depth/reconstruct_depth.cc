@@ -13,6 +13,7 @@
 #include "host/sched/scheduler.h"
 #include "host/transport/spmv.h"
 #include "host/transport/spmv_on_devices.h"
+#include "kernels/common/lanes.h"
 
 namespace rfrecon::depth {
 
@@ -152,6 +153,7 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
       sched::Options tiles;
       tiles.stage = stage;
       tiles.entries = options.entries;
+      tiles.granularity = RF_LANES;  // an NDRange work-item's rows (kernels/depth/row_lanes.h)
       reports.push_back(sched::run_tiles(
           devices, static_cast<std::size_t>(rows.height),
           [&](sched::Worker& worker, const sched::Tile& tile) {

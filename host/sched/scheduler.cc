@@ -162,16 +162,17 @@ class TileRun : public std::enable_shared_from_this<TileRun> {
     return std::max(g, (size + g - 1) / g * g);
   }
 
-  // First tile fixed; later ones take target_tile_seconds at the device's measured rate, but never more than half
-  // of the untaken items per live device, so the last tiles end together (guided self-scheduling).
+  // First tile fixed; later ones take target_tile_seconds at the device's measured rate, but, with other live devices,
+  // never more than half of the untaken items per live device, so the last tiles end together (guided
+  // self-scheduling). A device alone has no one to wait for: halving would only add launches of ever smaller tiles.
   std::size_t tile_size(const DeviceShare& share) const {
     std::size_t size = options_.first_tile_items > 0 ? options_.first_tile_items
                                                      : items_ / (8 * std::max<std::size_t>(devices_.size(), 1));
     if (share.tiles > 0 && share.busy_seconds > 0.0) {
       size = static_cast<std::size_t>(share.items_per_second() * options_.target_tile_seconds);
     }
-    const std::size_t live = std::max<std::size_t>(live_.load(), 1);
-    size = std::min(size, queue_.untaken() / (2 * live));
+    const std::size_t live = live_.load();
+    if (live > 1) size = std::min(size, queue_.untaken() / (2 * live));
     if (options_.max_tile_items > 0) size = std::min(size, options_.max_tile_items);
     return granule(size);
   }

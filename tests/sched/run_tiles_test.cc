@@ -168,5 +168,25 @@ TEST_F(RunTilesTest, LaterTilesFollowTheMeasuredThroughput) {
   EXPECT_EQ(*std::max_element(sizes.begin(), sizes.end()), 256u);
 }
 
+// Guided self-scheduling halves the last tiles only while another device could take some: a device alone takes, after
+// its first tile, tiles of target_tile_seconds of work and then the rest in one, not a tail of ever smaller tiles.
+TEST_F(RunTilesTest, ADeviceAloneTakesTheRestInOneTile) {
+  std::vector<cl::DeviceContext> one_device;
+  one_device.push_back(std::move(devices_.front()));
+  options_.max_tile_items = 0;
+  options_.target_tile_seconds = 10.0;  // far more than the rest of the items take at 1 us each
+  std::vector<std::size_t> sizes;
+  run_tiles(
+      one_device, kItems,
+      [&](Worker&, const Tile& tile) {
+        std::this_thread::sleep_for(std::chrono::microseconds(tile.size()));
+        sizes.push_back(tile.size());
+      },
+      options_);
+  ASSERT_EQ(sizes.size(), 2u);
+  EXPECT_EQ(sizes[0], 64u);
+  EXPECT_EQ(sizes[1], kItems - 64);
+}
+
 }  // namespace
 }  // namespace rfrecon::sched
