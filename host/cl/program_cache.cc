@@ -207,12 +207,20 @@ std::size_t ProgramCache::size() const {
 
 void prepare_programs(std::vector<DeviceContext>& devices, ProgramCache& programs,
                       const std::vector<ProgramRequest>& requests) {
+  prepare_programs(devices, programs, [&](std::size_t) { return requests; });
+}
+
+void prepare_programs(std::vector<DeviceContext>& devices, ProgramCache& programs,
+                      const std::function<std::vector<ProgramRequest>(std::size_t)>& requests_for) {
   std::vector<std::future<void>> builds;
   builds.reserve(devices.size());
-  for (DeviceContext& device : devices) {
-    builds.push_back(std::async(std::launch::async, [&] {
+  for (std::size_t position = 0; position < devices.size(); ++position) {
+    builds.push_back(std::async(std::launch::async, [&, position] {
+      DeviceContext& device = devices[position];
       try {
-        for (const ProgramRequest& request : requests) (void)programs.get(device, request.kernel_path, request.options);
+        for (const ProgramRequest& request : requests_for(position)) {
+          (void)programs.get(device, request.kernel_path, request.options);
+        }
       } catch (const std::exception& error) {
         spdlog::debug("preparing programs on {}: {}", describe(device.info()), error.what());
       }

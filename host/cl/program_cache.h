@@ -122,5 +122,8 @@ struct ProgramRequest {
 // tiles on the other devices).
 void prepare_programs(std::vector<DeviceContext>& devices, ProgramCache& programs,
                       const std::vector<ProgramRequest>& requests);
+// The same with each device's own requests: requests_for(position of the device in `devices`).
+void prepare_programs(std::vector<DeviceContext>& devices, ProgramCache& programs,
+                      const std::function<std::vector<ProgramRequest>(std::size_t)>& requests_for);
 
 }  // namespace rfrecon::cl

@@ -200,7 +200,7 @@ class TransportBlocks final : public sched::BlockTask {
   void set_frames(std::vector<cv::Mat> frames) { frames_ = std::move(frames); }
 
   void prepare(sched::Worker& worker) override {
-    for (const auto& request : transport_programs(capture_.setup)) {
+    for (const auto& request : transport_programs(capture_.setup, worker.entry())) {
       programs_.get(worker.device(), request.kernel_path, request.options);
     }
   }
@@ -313,7 +313,11 @@ TransportRun compute_transport_on_devices(const capture::FrameSource& frames, ca
     capture.setup.frame_depth = capture.manifest.bit_depth == 8 ? CV_8U : CV_16U;
     capture.setup.samples = capture::sample_map(capture.manifest);
   }
-  clock.time("build programs", [&] { cl::prepare_programs(devices, programs, transport_programs(capture.setup)); });
+  clock.time("build programs", [&] {
+    cl::prepare_programs(devices, programs, [&](std::size_t position) {
+      return transport_programs(capture.setup, entries.entry_for(position, devices[position].info()));
+    });
+  });
   const std::vector<Step> steps = plan_steps(capture.index, capture.manifest);
   const auto rows = static_cast<std::size_t>(capture.setup.camera_size.height);
   const std::vector<sched::Tile> blocks =

@@ -26,7 +26,7 @@ class DeviceAccumulator final : public TransportAccumulator {
         n_(setup.camera_size.area()),
         state_(make_empty_decoding(setup)) {
     if (setup.entries_per_pixel < 1) throw std::invalid_argument("transport: K must be at least 1");
-    const std::vector<cl::ProgramRequest> requests = transport_programs(setup, build_options);
+    const std::vector<cl::ProgramRequest> requests = transport_programs(setup, entry, build_options);
     const ::cl::Program decode = programs.get(device, requests[0].kernel_path, requests[0].options);
     const ::cl::Program compress = programs.get(device, requests[1].kernel_path, requests[1].options);
     gray_pairs_ = cl::make_kernel(decode, "gray_pairs", entry);

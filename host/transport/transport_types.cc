@@ -37,9 +37,10 @@ std::string transport_build_options(int entries_per_pixel, const std::string& ex
   return extra.empty() ? k : k + " " + extra;
 }
 
-std::vector<cl::ProgramRequest> transport_programs(const TransportSetup& setup, const std::string& extra) {
+std::vector<cl::ProgramRequest> transport_programs(const TransportSetup& setup, KernelEntry entry,
+                                                   const std::string& extra) {
   std::string decode = extra;
-  if (setup.frame_depth != CV_32F) {
+  if (entry == KernelEntry::kNdRange && setup.frame_depth != CV_32F) {
     const std::string sample = setup.frame_depth == CV_8U ? "-DRF_SAMPLE=uchar" : "-DRF_SAMPLE=ushort";
     decode = extra.empty() ? sample : sample + " " + extra;
   }

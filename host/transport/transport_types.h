@@ -68,9 +68,12 @@ struct TransportSetup {
 // a board binary needs no option).
 std::string transport_build_options(int entries_per_pixel, const std::string& extra = {});
 
-// The programs of the transport accumulators for `setup`, each with its build options (then `extra`): decode.cl and
-// compress.cl, built for the frames' sample type (-DRF_SAMPLE=uchar or ushort for raw frames) and K.
-std::vector<cl::ProgramRequest> transport_programs(const TransportSetup& setup, const std::string& extra = {});
+// The programs of the transport accumulators running `entry` for `setup`, each with its build options (then
+// `extra`): decode.cl and compress.cl, built for K and, for NDRange entries, the frames' sample type (-DRF_SAMPLE=uchar
+// or ushort for raw frames). Single work-item entries take linear frames and no sample option, which a board
+// binary could not take (it fixes only the parameters of kernels/common/params.h).
+std::vector<cl::ProgramRequest> transport_programs(const TransportSetup& setup, KernelEntry entry,
+                                                   const std::string& extra = {});
 
 // Compressed T: row c = camera pixel y * W + x, column q = projector pixel y * Wp + x. Entry k of row c is at
 // c * K + k, strongest first; index -1 (weight 0) marks an empty slot. Weights are T's values: linear camera

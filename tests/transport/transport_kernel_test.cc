@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "host/capture/protocol.h"
+#include "host/cl/binary_manifest.h"
 #include "host/cl/device_selection.h"
 #include "host/core/errors.h"
 #include "host/transport/compute_transport.h"
@@ -125,6 +126,23 @@ TEST_F(TransportKernelTest, RawSamplesMadeLinearInTheKernelsMatchReferenceExactl
         expect_same_transport(testing::feed_all(*accumulator, capture.sequence, raw, linear), expected);
       }
     }
+  }
+}
+
+// A board binary fixes the kernels' parameters and refuses any other build option (cl::check_options_match_manifest):
+// the single work-item programs of a raw 16-bit capture ask for none, so boards take such captures (the host makes the
+// frames linear for them); the NDRange programs are built for the raw samples.
+TEST(TransportProgramsTest, OnlyNdRangeProgramsAreBuiltForRawSamples) {
+  TransportSetup setup;
+  setup.frame_depth = CV_16U;
+  cl::BinaryManifest board;
+  board.file = "board.aocx.json";
+  board.parameters = cl::host_kernel_parameters();
+  for (const auto& request : transport_programs(setup, KernelEntry::kSingleWorkItem)) {
+    EXPECT_NO_THROW(cl::check_options_match_manifest(board, request.options)) << request.kernel_path;
+  }
+  for (const auto& request : transport_programs(setup, KernelEntry::kNdRange)) {
+    EXPECT_THAT(request.options, ::testing::HasSubstr("-DRF_SAMPLE=ushort")) << request.kernel_path;
   }
 }
 
