@@ -28,7 +28,8 @@ cv::Mat FrameSource::load(const CaptureManifest& manifest, std::size_t index, Fr
   if (raw.empty()) throw InputError(label + ": the source returned no image");
   if (form == FrameForm::kLinear) return linearize_frame(raw, manifest, label);
   check_raw_frame(raw, manifest, label);
-  return raw;
+  // The kernels read raw frames in place, batches of them after later calls: a buffer the caller reuses is copied.
+  return raw.u == nullptr || !raw.isContinuous() ? raw.clone() : raw;
 }
 
 std::string FrameSource::describe(const CaptureManifest& manifest, std::size_t index) const {

@@ -21,7 +21,9 @@ class FrameSource {
   // says, of the camera size. Called by one thread at a time (the source holds a lock around it); the transport stage
   // asks for white and black first, then for each frame once, in its order with one reader thread and in any order
   // within the read-ahead window with more; an index is asked for again only after a device failed mid-run
-  // (compute_transport_on_devices). It throws to end the run.
+  // (compute_transport_on_devices). It throws to end the run. An image over memory it does not own (a cv::Mat made
+  // over a camera SDK's buffer) or not continuous is copied; one it owns must stay unchanged until dropped, as the
+  // kernels may read a raw frame after later calls.
   using RawFrame = std::function<cv::Mat(std::size_t index)>;
 
   // The files of the manifest inside (or relative to) `capture_dir`: what `rfrecon transport` reads. Implicit: a

@@ -4,7 +4,9 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <thread>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -77,6 +79,29 @@ TEST_F(FrameSourceTest, RawFramesAreCheckedButNotConverted) {
   } catch (const InputError& error) {
     EXPECT_THAT(error.what(), HasSubstr("camera SDK frame 3 (frame_3.png)"));
   }
+}
+
+// A camera SDK that hands over each frame in the same buffer of its own: the raw frames taken before keep their
+// samples (copied), and a view of part of a larger image comes out continuous.
+TEST_F(FrameSourceTest, RawFramesOverTheCallersBufferAreCopied) {
+  std::vector<std::uint16_t> sdk_buffer(static_cast<std::size_t>(manifest_.camera_size.area()));
+  const FrameSource camera = FrameSource::from_callback(
+      [&](std::size_t i) {
+        raw(i).copyTo(cv::Mat(manifest_.camera_size, CV_16UC1, sdk_buffer.data()));
+        return cv::Mat(manifest_.camera_size, CV_16UC1, sdk_buffer.data());
+      },
+      "camera SDK");
+  const cv::Mat first = camera.load(manifest_, 0, FrameForm::kRaw);
+  const cv::Mat second = camera.load(manifest_, 1, FrameForm::kRaw);
+  EXPECT_EQ(cv::norm(first, raw(0), cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(second, raw(1), cv::NORM_INF), 0.0);
+
+  const cv::Mat wide(manifest_.camera_size.height, 2 * manifest_.camera_size.width, CV_16UC1, cv::Scalar(7));
+  const FrameSource view = FrameSource::from_callback(
+      [&](std::size_t) { return wide.colRange(0, manifest_.camera_size.width); }, "camera SDK");
+  const cv::Mat got = view.load(manifest_, 0, FrameForm::kRaw);
+  EXPECT_TRUE(got.isContinuous());
+  EXPECT_EQ(cv::norm(got, cv::Mat(manifest_.camera_size, CV_16UC1, cv::Scalar(7)), cv::NORM_INF), 0.0);
 }
 
 TEST_F(FrameSourceTest, BadCallbackFramesNameTheSourceAndFrame) {
