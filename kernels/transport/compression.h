@@ -78,8 +78,8 @@ typedef struct {  // NOLINT(modernize-use-using): shared with OpenCL C, which ha
 } RfDotGrid;
 
 // Pixel c's ELL row and energy updated with the batch's contributions, in the batch's order: frame f lit projector
-// pixel dot[f * stride] (-1: none) with value[f * stride].
-RF_INLINE void rf_dot_update_row(unsigned c, const float* value, const int* dot, int stride, RF_GLOBAL int* indices,
+// pixel dot[f] (-1: none) with value[f].
+RF_INLINE void rf_dot_update_row(unsigned c, const float* value, const int* dot, RF_GLOBAL int* indices,
                                  RF_GLOBAL float* weights, RF_GLOBAL float* energy) {
   RF_GLOBAL int* row_index = indices + (size_t)c * RF_K;
   RF_GLOBAL float* row_weight = weights + (size_t)c * RF_K;
@@ -93,10 +93,9 @@ RF_INLINE void rf_dot_update_row(unsigned c, const float* value, const int* dot,
   float e = energy[c];
   RF_UNROLL
   for (int f = 0; f < RF_FRAME_BATCH; ++f) {
-    const int at = f * stride;
-    if (dot[at] >= 0) {
-      e += value[at];
-      rf_insert_entry(dot[at], value[at], index, weight);
+    if (dot[f] >= 0) {
+      e += value[f];
+      rf_insert_entry(dot[f], value[f], index, weight);
     }
   }
   RF_UNROLL
@@ -136,7 +135,7 @@ RF_INLINE void rf_dot_samples_pixel(unsigned c, const float* sample, int frame_c
     dot[f] = lit ? qy * grid.projector_width + qx : -1;
     reached |= lit;
   }
-  if (reached) rf_dot_update_row(c, value, dot, 1, indices, weights, energy);
+  if (reached) rf_dot_update_row(c, value, dot, indices, weights, energy);
 }
 
 // The same with the batch in one array (frame f at f * n).
@@ -153,9 +152,25 @@ RF_INLINE void rf_dot_frames_pixel(unsigned c, unsigned n, int frame_count, cons
 }
 
 #ifdef __OPENCL_VERSION__
+// rf_insert_entry on RF_LANES rows at once, slot k of lane l's row in lane l of weight[k] and index[k]: lanes where
+// `lit` is set take (q, v), the others keep their row. The same compare-and-shift network, with selects.
+RF_INLINE void rf_insert_entry_lanes(int8 lit, int8 q, float8 v, int8* index, float8* weight) {
+#pragma unroll
+  for (int k = RF_K - 1; k > 0; --k) {
+    const int8 beats = lit & (v > weight[k]);
+    const int8 beats_previous = v > weight[k - 1];
+    weight[k] = select(weight[k], select(v, weight[k - 1], beats_previous), beats);
+    index[k] = select(index[k], select(q, index[k - 1], beats_previous), beats);
+  }
+  const int8 beats = lit & (v > weight[0]);
+  weight[0] = select(weight[0], v, beats);
+  index[0] = select(index[0], q, beats);
+}
+
 // The RF_LANES pixels c0 .. c0 + RF_LANES - 1 at once, one per vector lane, frame f of the batch at frames[f] (samples
-// made linear with `map`): the batch's contributions in vector arithmetic, then the rows of the pixels a frame
-// reached, one by one.
+// made linear with `map`). The noise test first, on every frame: a group that no frame lifts above the noise (most
+// groups in most batches) stops there. Then the window arithmetic and the insertion, in lanes, for the frames that
+// lift some lane; the rows are gathered into lanes (slot k of every row in one vector) and written back.
 RF_INLINE void rf_dot_frames_lanes(unsigned c0, int frame_count, const int* offsets_x, const int* offsets_y,
                                    RfDotGrid grid, __global const RF_SAMPLE* const* frames, RfSampleMap map,
                                    __global const float* black, __global const uchar* flags,
@@ -163,38 +178,62 @@ RF_INLINE void rf_dot_frames_lanes(unsigned c0, int frame_count, const int* offs
                                    __global int* indices, __global float* weights, __global float* energy) {
   const int8 compressible = RF_COMPRESSIBLE(convert_uint8(vload8(0, flags + c0)));
   if (!any(compressible)) return;  // pixels the projector does not light read no frame
+  const float8 dark = vload8(0, black + c0);
+  // Every frame's samples loaded before the first is used, so that their cache misses overlap (the loads stalled
+  // one by one, docs/performance.md); unused frame buffers repeat frame 0, so every load is in bounds.
+  float8 value[RF_FRAME_BATCH];
+#pragma unroll
+  for (int f = 0; f < RF_FRAME_BATCH; ++f) value[f] = rf_linear_sample_lanes(frames[f], c0, map) - dark;
+  // The comparisons' masks (-1 or 0 per lane) combined bitwise: written with && between these vectors and the
+  // scalar f < frame_count, no lane was ever lit under oclgrind (PoCL's were right).
+  int8 above[RF_FRAME_BATCH];
+  int8 any_above = 0;
+#pragma unroll
+  for (int f = 0; f < RF_FRAME_BATCH; ++f) {
+    above[f] = (f < frame_count ? compressible : 0) & (value[f] > grid.noise_threshold);
+    any_above |= above[f];
+  }
+  if (!any(any_above)) return;
   const int s = grid.spacing;
   const int8 x0 = RF_LANES_FN(rf_window_start)(convert_int8(vload8(0, projector_x + c0)), s);
   const int8 y0 = RF_LANES_FN(rf_window_start)(convert_int8(vload8(0, projector_y + c0)), s);
   const int8 ax = RF_LANES_FN(rf_window_residue)(x0, s);
   const int8 ay = RF_LANES_FN(rf_window_residue)(y0, s);
-  const float8 dark = vload8(0, black + c0);
-  float value[RF_FRAME_BATCH * RF_LANES];  // frame f of lane l at f * RF_LANES + l
-  int dot[RF_FRAME_BATCH * RF_LANES];
-  // Every frame's samples loaded before the first is used, so that their cache misses overlap (the loads stalled
-  // one by one, docs/performance.md); unused frame buffers repeat frame 0, so every load is in bounds.
-  float8 sample[RF_FRAME_BATCH];
+  __global int* row_index = indices + (size_t)c0 * RF_K;
+  __global float* row_weight = weights + (size_t)c0 * RF_K;
+  int8 index[RF_K];
+  float8 weight[RF_K];
 #pragma unroll
-  for (int f = 0; f < RF_FRAME_BATCH; ++f) sample[f] = rf_linear_sample_lanes(frames[f], c0, map);
-  int8 reached = 0;
+  for (int k = 0; k < RF_K; ++k) {
+    index[k] =
+        (int8)(row_index[k], row_index[RF_K + k], row_index[2 * RF_K + k], row_index[3 * RF_K + k],
+               row_index[4 * RF_K + k], row_index[5 * RF_K + k], row_index[6 * RF_K + k], row_index[7 * RF_K + k]);
+    weight[k] = (float8)(row_weight[k], row_weight[RF_K + k], row_weight[2 * RF_K + k], row_weight[3 * RF_K + k],
+                         row_weight[4 * RF_K + k], row_weight[5 * RF_K + k], row_weight[6 * RF_K + k],
+                         row_weight[7 * RF_K + k]);
+  }
+  float8 e = vload8(0, energy + c0);
+#pragma unroll
   for (int f = 0; f < RF_FRAME_BATCH; ++f) {
+    if (!any(above[f])) continue;
     const int8 qx = RF_LANES_FN(rf_window_dot)(x0, ax, offsets_x[f], s);
     const int8 qy = RF_LANES_FN(rf_window_dot)(y0, ay, offsets_y[f], s);
-    const int in_batch = f < frame_count;
-    const float8 v = in_batch ? sample[f] - dark : 0.0f;
-    // The comparisons' masks (-1 or 0 per lane) combined bitwise: written with && between these vectors and the
-    // scalar f < frame_count, no lane was ever lit under oclgrind (PoCL's were right).
-    const int8 lit = (in_batch ? compressible : 0) & (v > grid.noise_threshold) & (qx >= 0) &
-                     (qx < grid.projector_width) & (qy >= 0) & (qy < grid.projector_height);
-    vstore8(lit ? v : 0.0f, f, value);
-    vstore8(lit ? qy * grid.projector_width + qx : -1, f, dot);
-    reached |= lit;
+    const int8 lit = above[f] & (qx >= 0) & (qx < grid.projector_width) & (qy >= 0) & (qy < grid.projector_height);
+    e = select(e, e + value[f], lit);
+    rf_insert_entry_lanes(lit, qy * grid.projector_width + qx, value[f], index, weight);
   }
-  if (!any(reached)) return;
-  int lanes_reached[RF_LANES];
-  vstore8(reached, 0, lanes_reached);
-  for (int l = 0; l < RF_LANES; ++l) {
-    if (lanes_reached[l]) rf_dot_update_row(c0 + l, value + l, dot + l, RF_LANES, indices, weights, energy);
+  vstore8(e, 0, energy + c0);
+#pragma unroll
+  for (int k = 0; k < RF_K; ++k) {
+    int slot_index[RF_LANES];
+    float slot_weight[RF_LANES];
+    vstore8(index[k], 0, slot_index);
+    vstore8(weight[k], 0, slot_weight);
+#pragma unroll
+    for (int l = 0; l < RF_LANES; ++l) {
+      row_index[l * RF_K + k] = slot_index[l];
+      row_weight[l * RF_K + k] = slot_weight[l];
+    }
   }
 }
 #endif
