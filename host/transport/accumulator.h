@@ -49,9 +49,10 @@ std::unique_ptr<TransportAccumulator> make_reference_accumulator(TransportSetup 
 // frames are compressed RF_FRAME_BATCH at a time (the last batch at finish()), Gray pairs decoded RF_GRAY_PAIR_BATCH
 // at a time (the last batch at finish_gray()). Raw frames are made linear in the NDRange kernels, on the host for the
 // single work-item ones. build_options are added to the programs' (tests build the single work-item entries with an
-// FPGA target macro on PoCL).
+// FPGA target macro on PoCL). `storage`: an earlier transport whose memory the state reuses (make_empty_decoding).
 std::unique_ptr<TransportAccumulator> make_device_accumulator(TransportSetup setup, cl::DeviceContext& device,
                                                               cl::ProgramCache& programs, KernelEntry entry,
-                                                              const std::string& build_options = {});
+                                                              const std::string& build_options = {},
+                                                              CompressedTransport storage = {});
 
 }  // namespace rfrecon::transport

@@ -184,16 +184,18 @@ capture::FrameForm frame_form(const TransportSetup& setup) {
   return setup.frame_depth == CV_32F ? capture::FrameForm::kLinear : capture::FrameForm::kRaw;
 }
 
-// The transport stage's side of the block runner: one device accumulator per camera row block.
+// The transport stage's side of the block runner: one device accumulator per camera row block. `storage` (an
+// earlier transport's memory) goes to the one block's accumulator, or with several blocks to the stacked result.
 class TransportBlocks final : public sched::BlockTask {
  public:
   TransportBlocks(const capture::FrameSource& source, const OpenedCapture& capture, const std::vector<Step>& steps,
-                  const std::vector<sched::Tile>& blocks, cl::ProgramCache& programs)
+                  const std::vector<sched::Tile>& blocks, cl::ProgramCache& programs, CompressedTransport storage)
       : source_(source),
         capture_(capture),
         steps_(steps),
         blocks_(blocks),
         programs_(programs),
+        storage_(std::move(storage)),
         accumulators_(blocks.size()),
         results_(blocks.size()) {}
 
@@ -208,7 +210,9 @@ class TransportBlocks final : public sched::BlockTask {
   void create(sched::Worker& worker, std::size_t block) override {
     TransportSetup setup = capture_.setup;
     setup.camera_size.height = static_cast<int>(blocks_[block].size());
-    accumulators_[block] = make_device_accumulator(setup, worker.device(), programs_, worker.entry());
+    // A block rebuilt on another device after a failure gets new memory: storage_ went to its first accumulator.
+    accumulators_[block] = make_device_accumulator(setup, worker.device(), programs_, worker.entry(), {},
+                                                   blocks_.size() == 1 ? std::move(storage_) : CompressedTransport{});
   }
 
   void step(sched::Worker& worker, std::size_t block, std::size_t index, bool replay) override {
@@ -231,7 +235,7 @@ class TransportBlocks final : public sched::BlockTask {
   // The blocks' transports stacked into the whole camera image (moved out, once).
   CompressedTransport assemble() {
     if (blocks_.size() == 1) return std::move(results_.front());  // the whole image: nothing to stack
-    CompressedTransport whole = make_empty_transport(capture_.setup);
+    CompressedTransport whole = make_empty_transport(capture_.setup, std::move(storage_));
     const auto width = static_cast<std::size_t>(capture_.setup.camera_size.width);
     const auto k = static_cast<std::size_t>(capture_.setup.entries_per_pixel);
     for (std::size_t b = 0; b < blocks_.size(); ++b) {
@@ -259,6 +263,7 @@ class TransportBlocks final : public sched::BlockTask {
   const std::vector<Step>& steps_;
   const std::vector<sched::Tile>& blocks_;
   cl::ProgramCache& programs_;
+  CompressedTransport storage_;
   std::vector<cv::Mat> frames_;  // the current step's frames
   std::vector<std::shared_ptr<TransportAccumulator>> accumulators_;
   std::vector<CompressedTransport> results_;
@@ -296,7 +301,8 @@ TransportRun compute_transport(const capture::FrameSource& frames, capture::Capt
 
 TransportRun compute_transport_on_devices(const capture::FrameSource& frames, capture::CaptureManifest manifest,
                                           TransportSetup setup, std::vector<cl::DeviceContext>& devices,
-                                          cl::ProgramCache& programs, const cl::EntryChoice& entries, int readers) {
+                                          cl::ProgramCache& programs, const cl::EntryChoice& entries, int readers,
+                                          CompressedTransport storage) {
   if (readers < 1) throw UsageError("transport: --readers must be at least 1");
   entries.check_device_count(devices.size());
   StageClock clock;
@@ -322,7 +328,7 @@ TransportRun compute_transport_on_devices(const capture::FrameSource& frames, ca
   const auto rows = static_cast<std::size_t>(capture.setup.camera_size.height);
   const std::vector<sched::Tile> blocks =
       sched::split_rows(rows, devices.size() == 1 ? 1 : kBlocksPerDevice * devices.size());
-  TransportBlocks task(frames, capture, steps, blocks, programs);
+  TransportBlocks task(frames, capture, steps, blocks, programs, std::move(storage));
   sched::BlockOptions options;
   options.items_per_row = static_cast<std::size_t>(capture.setup.camera_size.width);
   options.entries = entries;

@@ -55,10 +55,11 @@ inline constexpr int kBlocksPerDevice = 4;
 // only when all fail does it throw (sched::AllDevicesFailed). The kernels are
 // per pixel, so with one entry on every device the result equals the single-device result bit for bit. `entries`
 // gives each device its kernel entry (auto: cl::preferred_entry); a per-device list of the wrong length throws
-// UsageError before any frame is read.
+// UsageError before any frame is read. `storage`: an earlier transport (of any size) whose memory the result reuses,
+// for a scanner that scans again and again (make_empty_transport); the result is the same.
 TransportRun compute_transport_on_devices(const capture::FrameSource& frames, capture::CaptureManifest manifest,
                                           TransportSetup setup, std::vector<cl::DeviceContext>& devices,
                                           cl::ProgramCache& programs, const cl::EntryChoice& entries = {},
-                                          int readers = kDefaultReaders);
+                                          int readers = kDefaultReaders, CompressedTransport storage = {});
 
 }  // namespace rfrecon::transport

@@ -5,6 +5,7 @@
 #include <array>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "host/capture/manifest.h"
 #include "host/cl/kernel_launch.h"
@@ -19,12 +20,12 @@ namespace {
 class DeviceAccumulator final : public TransportAccumulator {
  public:
   DeviceAccumulator(const TransportSetup& setup, cl::DeviceContext& device, cl::ProgramCache& programs,
-                    KernelEntry entry, const std::string& build_options)
+                    KernelEntry entry, const std::string& build_options, CompressedTransport storage)
       : setup_(setup),
         device_(device),
         entry_(entry),
         n_(setup.camera_size.area()),
-        state_(make_empty_decoding(setup)) {
+        state_(make_empty_decoding(setup, std::move(storage))) {
     if (setup.entries_per_pixel < 1) throw std::invalid_argument("transport: K must be at least 1");
     const std::vector<cl::ProgramRequest> requests = transport_programs(setup, entry, build_options);
     const ::cl::Program decode = programs.get(device, requests[0].kernel_path, requests[0].options);
@@ -232,10 +233,11 @@ class DeviceAccumulator final : public TransportAccumulator {
 
 std::unique_ptr<TransportAccumulator> make_device_accumulator(TransportSetup setup, cl::DeviceContext& device,
                                                               cl::ProgramCache& programs, KernelEntry entry,
-                                                              const std::string& build_options) {
+                                                              const std::string& build_options,
+                                                              CompressedTransport storage) {
   check_kernel_dot_spacing(setup.dot_spacing);
   setup.thresholds = resolve_thresholds(setup.thresholds, 8);
-  return std::make_unique<DeviceAccumulator>(setup, device, programs, entry, build_options);
+  return std::make_unique<DeviceAccumulator>(setup, device, programs, entry, build_options, std::move(storage));
 }
 
 }  // namespace rfrecon::transport

@@ -2,13 +2,14 @@
 #include "host/transport/transport_types.h"
 
 #include <limits>
+#include <utility>
 
 #include "host/core/huge_pages.h"
 
 namespace rfrecon::transport {
 
-CompressedTransport make_empty_decoding(const TransportSetup& setup) {
-  CompressedTransport transport;
+CompressedTransport make_empty_decoding(const TransportSetup& setup, CompressedTransport storage) {
+  CompressedTransport transport = std::move(storage);
   transport.setup = setup;
   const std::size_t n = transport.camera_pixels();
   assign_on_huge_pages(transport.correspondence, 2 * n, std::numeric_limits<float>::quiet_NaN());
@@ -16,6 +17,8 @@ CompressedTransport make_empty_decoding(const TransportSetup& setup) {
   assign_on_huge_pages(transport.gray_y, n, 0U);
   assign_on_huge_pages(transport.flags, n, std::uint8_t{0});
   assign_on_huge_pages(transport.direct_energy, n, 0.0f);
+  transport.indices.clear();
+  transport.weights.clear();
   return transport;
 }
 
@@ -25,8 +28,8 @@ void add_empty_rows(CompressedTransport& transport) {
   assign_on_huge_pages(transport.weights, slots, 0.0f);
 }
 
-CompressedTransport make_empty_transport(const TransportSetup& setup) {
-  CompressedTransport transport = make_empty_decoding(setup);
+CompressedTransport make_empty_transport(const TransportSetup& setup, CompressedTransport storage) {
+  CompressedTransport transport = make_empty_decoding(setup, std::move(storage));
   add_empty_rows(transport);
   return transport;
 }

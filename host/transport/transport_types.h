@@ -95,12 +95,15 @@ struct CompressedTransport {
   std::string protocol() const { return setup.dot_spacing > 0 ? "gray+dots" : "gray"; }
 };
 
-// An empty transport for `setup`: gray codes 0, flags 0, every slot empty, energy 0, correspondence NaN.
-CompressedTransport make_empty_transport(const TransportSetup& setup);
+// An empty transport for `setup`: gray codes 0, flags 0, every slot empty, energy 0, correspondence NaN. `storage`:
+// an earlier transport whose arrays' memory is reused (its contents are discarded), so that a scanner's repeated
+// scans do not map, zero and fault in a new hundred megabytes each time; the arrays grow where it is too small.
+CompressedTransport make_empty_transport(const TransportSetup& setup, CompressedTransport storage = {});
 
-// The same without T's rows (indices and weights have no element): the decoding's state, which add_empty_rows
-// completes when the compression needs them, so that decoding does not pay for the rows' memory (N * K entries).
-CompressedTransport make_empty_decoding(const TransportSetup& setup);
+// The same without T's rows (indices and weights have no element, their memory kept): the decoding's state, which
+// add_empty_rows completes when the compression needs them, so that decoding does not pay for the rows' memory
+// (N * K entries).
+CompressedTransport make_empty_decoding(const TransportSetup& setup, CompressedTransport storage = {});
 void add_empty_rows(CompressedTransport& transport);
 
 }  // namespace rfrecon::transport
