@@ -26,10 +26,9 @@ cv::Mat FrameSource::load(const CaptureManifest& manifest, std::size_t index, Fr
     raw = raw_frame_(index);
   }
   if (raw.empty()) throw InputError(label + ": the source returned no image");
-  if (form == FrameForm::kLinear) return linearize_frame(raw, manifest, label);
-  check_raw_frame(raw, manifest, label);
+  const cv::Mat frame = frame_in_form(raw, manifest, label, form);
   // The kernels read raw frames in place, batches of them after later calls: a buffer the caller reuses is copied.
-  return raw.u == nullptr || !raw.isContinuous() ? raw.clone() : raw;
+  return form == FrameForm::kRaw && (raw.u == nullptr || !raw.isContinuous()) ? raw.clone() : frame;
 }
 
 std::string FrameSource::describe(const CaptureManifest& manifest, std::size_t index) const {

@@ -374,12 +374,15 @@ cv::Mat linearize_frame(const cv::Mat& raw, const CaptureManifest& manifest, con
   return linear;
 }
 
+cv::Mat frame_in_form(const cv::Mat& raw, const CaptureManifest& manifest, const std::string& file, FrameForm form) {
+  if (form == FrameForm::kLinear) return linearize_frame(raw, manifest, file);
+  check_raw_frame(raw, manifest, file);
+  return raw;
+}
+
 cv::Mat load_frame(const fs::path& capture_dir, const CaptureManifest& manifest, std::size_t index, FrameForm form) {
   const fs::path path = capture_dir / manifest.frames.at(index).file;
-  cv::Mat raw = decode_image(path, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
-  if (form == FrameForm::kLinear) return linearize_frame(raw, manifest, path.string());
-  check_raw_frame(raw, manifest, path.string());
-  return raw;
+  return frame_in_form(decode_image(path, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH), manifest, path.string(), form);
 }
 
 }  // namespace rfrecon::capture

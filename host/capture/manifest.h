@@ -79,6 +79,8 @@ cv::Mat linearize_frame(const cv::Mat& raw, const CaptureManifest& manifest, con
 
 // What loading gives: linear CV_32F frames, or the camera's raw samples (checked, not converted).
 enum class FrameForm { kLinear, kRaw };
+// A raw frame in `form`: linearize_frame, or check_raw_frame and `raw` itself.
+cv::Mat frame_in_form(const cv::Mat& raw, const CaptureManifest& manifest, const std::string& file, FrameForm form);
 
 // Reads one frame of the manifest (any format imgcodecs reads) and returns it linearized (CV_32F, [0, 1]) or raw.
 // Throws InputError naming the file when it is missing, unreadable, mis-sized or of the wrong bit depth.
