@@ -15,7 +15,10 @@ RF_INLINE RF_REAL RF_ROW_FN(rf_sample_row)(RF_ROW_SPACE const float* row, int wi
 
 // dz/du at column u (fractional) for depth z, given e_cam at u. Clears *ok where the ODE breaks down (no dual signal
 // at the projector column, no camera signal, grazing angle) and returns 0 there. Every quantity is computed and the
-// result selected (a discarded one may be infinite or NaN).
+// result selected (a discarded one may be infinite or NaN). The slope and the grazing test depend on the direction of
+// w only, so w is scaled by d_c^3 > 0 and both are multiplied through by s: one division and one square root for w
+// and the test, where they took three divisions and four square roots (docs/method.md). The squared test stays
+// finite while e |X| < 1e18 (the rectified images are scaled to a median e_cam of 1, host/depth/rectification.cc).
 RF_INLINE RF_REAL RF_ROW_FN(rf_slope)(RfRectifiedRig rig, RF_REAL beta, float u, RF_REAL z, RF_REAL e_cam,
                                       RF_ROW_SPACE const float* e_proj_row, int proj_width, RF_INT* ok) {
   const float a = (u - rig.cx_cam) / rig.f;
@@ -23,19 +26,21 @@ RF_INLINE RF_REAL RF_ROW_FN(rf_slope)(RfRectifiedRig rig, RF_REAL beta, float u,
   const RF_REAL u_proj = rig.f * (x - rig.b) / z + rig.cx_proj;
   const RF_REAL e_proj = RF_ROW_FN(rf_sample_row)(e_proj_row, proj_width, u_proj);
   const RF_INT lit = (e_cam > 0.0f) & (e_proj > 0.0f) & (z > 0.0f);
-  // Unit vectors toward the camera (w_c = -X / d_c) and the projector (w_p = (o_p - X) / d_p), scaled by 1 / d^2.
-  const RF_REAL dc2 = x * x + y * y + z * z, dc = RF_SQRT(dc2);
+  // d_c^3 w = -e_cam X - e_proj (d_c / d_p)^3 (o_p - X): w_c = -X / d_c and w_p = (o_p - X) / d_p over d^2.
+  const RF_REAL dc2 = x * x + y * y + z * z;
   const RF_REAL px = rig.b - x, py = -y, pz = -z;
-  const RF_REAL dp2 = px * px + py * py + pz * pz, dp = RF_SQRT(dp2);
-  const RF_REAL kc = e_cam / (dc2 * dc), kp = e_proj / (dp2 * dp);
-  const RF_REAL wx = -kc * x - kp * px, wy = -kc * y - kp * py, wz = -kc * z - kp * pz;
-  const RF_REAL s = RF_SQRT(1.0f + beta * beta);
-  const RF_REAL w_perp = (beta * wy + wz) / s;
-  const RF_REAL denominator = s * wx - a * w_perp;
-  const RF_REAL w_norm = RF_SQRT(wx * wx + wy * wy + wz * wz);
-  const RF_INT valid = lit & (RF_FABS(denominator) > RF_GRAZING_LIMIT * w_norm);
+  const RF_REAL dp2 = px * px + py * py + pz * pz;
+  const RF_REAL ratio2 = dc2 / dp2;
+  const RF_REAL kp = e_proj * (ratio2 * RF_SQRT(ratio2));
+  const RF_REAL wx = -e_cam * x - kp * px, wy = -e_cam * y - kp * py, wz = -e_cam * z - kp * pz;
+  // s w_perp and s (s w_x - a w_perp), s = sqrt(1 + beta^2); the grazing test |s w_x - a w_perp| > limit |w| squared.
+  const RF_REAL s2 = 1.0f + beta * beta;
+  const RF_REAL w_perp_s = beta * wy + wz;
+  const RF_REAL denominator_s = s2 * wx - a * w_perp_s;
+  const RF_REAL w_norm2 = wx * wx + wy * wy + wz * wz;
+  const RF_INT valid = lit & (denominator_s * denominator_s > (RF_GRAZING_LIMIT * RF_GRAZING_LIMIT) * (s2 * w_norm2));
   *ok = *ok & valid;
-  return RF_SELECT(RF_REAL, valid, z * w_perp / (rig.f * denominator), 0.0f);
+  return RF_SELECT(RF_REAL, valid, z * w_perp_s / (rig.f * denominator_s), 0.0f);
 }
 
 // Stage `stage` (0 to 3) of the step from column u (integer) at depth z; e0 and e1 are e_cam at u and u + 1, linearly
