@@ -1,6 +1,7 @@
 // Orchestration of the depth stage: triangulation, rectification, segmentation, row solvers, back to the camera.
 #include "host/depth/reconstruct_depth.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -166,15 +167,21 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
           tiles));
       clock.lap(stage);
     };
+    // The NDRange entries' interleaved rows, made once for every tile of both solvers (timed with the integration).
+    const std::vector<cl::KernelEntry> entries = options.entries.resolve(devices);
+    const bool any_lanes = std::find(entries.begin(), entries.end(), cl::KernelEntry::kNdRange) != entries.end();
+    const LaneRows lanes = any_lanes ? interleave_rows(rows) : LaneRows{};
     solve_rows("integrate", [&](sched::Worker& worker, int first, int end) {
-      return integrate_rows_opencl(worker.device(), programs, worker.entry(), rows, options.integration, first, end);
+      return integrate_rows_opencl(worker.device(), programs, worker.entry(), rows, options.integration, first, end,
+                                   &lanes);
     });
     if (options.method == Method::kFused) {
       const std::vector<float> z_integrated = z_rect;
       solve_rows("fuse", [&](sched::Worker& worker, int first, int end) {
         const auto begin = z_integrated.begin() + static_cast<std::ptrdiff_t>(first) * rows.width;
         const std::vector<float> start(begin, begin + static_cast<std::ptrdiff_t>(end - first) * rows.width);
-        return fuse_rows_opencl(worker.device(), programs, worker.entry(), rows, start, options.fusion, first, end);
+        return fuse_rows_opencl(worker.device(), programs, worker.entry(), rows, start, options.fusion, first, end,
+                                &lanes);
       });
     }
     summary["scheduler"] = reports;

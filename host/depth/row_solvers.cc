@@ -13,6 +13,7 @@
 
 #include "host/cl/kernel_launch.h"
 #include "host/core/errors.h"
+#include "host/core/parallel_rows.h"
 #include "kernels/common/lanes.h"
 #include "kernels/common/params.h"
 #include "kernels/depth/row_fusion.h"
@@ -85,7 +86,8 @@ struct LaunchRows {
   }
   std::size_t work_items() const { return lanes ? static_cast<std::size_t>(padded / RF_LANES) : 1; }
 
-  // The tile's `count` rows of `width` elements at `data`, in the launch's layout, the padding rows `fill`.
+  // The tile's `count` rows of `width` elements at `data`, in the launch's layout, the padding rows `fill`; groups of
+  // lanes on every core.
   template <typename T>
   std::vector<T> layout(const T* data, int width, T fill) const {
     const auto w = static_cast<std::size_t>(width);
@@ -95,7 +97,8 @@ struct LaunchRows {
       return out;
     }
     // Written in order, lane by lane within each pixel of a group.
-    for (std::size_t group = 0; group < static_cast<std::size_t>(padded / RF_LANES); ++group) {
+    for_each_row(padded / RF_LANES, [&](int g) {
+      const auto group = static_cast<std::size_t>(g);
       const std::size_t lanes_in_tile = std::min<std::size_t>(RF_LANES, count - group * RF_LANES);
       const T* group_rows = data + group * RF_LANES * w;
       T* group_out = out.data() + group * w * RF_LANES;
@@ -103,43 +106,65 @@ struct LaunchRows {
         for (std::size_t lane = 0; lane < lanes_in_tile; ++lane)
           group_out[u * RF_LANES + lane] = group_rows[lane * w + u];
       }
-    }
+    });
     return out;
   }
 
-  // The tile's rows back from the launch's layout.
+  // The tile's rows back from the launch's layout, on every core.
   std::vector<float> rows_of(std::vector<float> launched, int width) const {
     if (!lanes) return launched;  // the tile itself
     const auto w = static_cast<std::size_t>(width);
     std::vector<float> out(static_cast<std::size_t>(count) * w);
-    for (std::size_t row = 0; row < static_cast<std::size_t>(count); ++row) {
+    for_each_row(count, [&](int r) {
+      const auto row = static_cast<std::size_t>(r);
       const std::size_t group = row / RF_LANES, lane = row % RF_LANES;
       for (std::size_t u = 0; u < w; ++u) out[row * w + u] = launched[(group * w + u) * RF_LANES + lane];
-    }
+    });
     return out;
   }
 };
 
 // The inputs for rows [row_begin, row_end) in the launch's layout, padded with masked rows (zero signal, no depth),
-// and buffers over them (cl::borrow: no copy where kernels run on host memory). Keep it alive until the kernel ran.
-struct RowBuffers {
-  std::vector<float> e_cam_rows, e_proj_rows, z_tri_rows;
-  std::vector<std::uint8_t> run_rows;
+// and buffers over them (cl::borrow: no copy where kernels run on host memory): the launch's part of `lanes` where
+// given (NDRange), else its own copy. Keep it and `lanes` alive until the kernel ran.
+class RowBuffers {
+ public:
   ::cl::Buffer e_cam, e_proj, z_tri, runs;
 
-  RowBuffers(cl::DeviceContext& device, const RectifiedRows& rows, int row_begin, const LaunchRows& launch)
-      : e_cam_rows(launch.layout(rows.e_cam.data() + offset(rows, row_begin), rows.width, 0.0f)),
-        e_proj_rows(launch.layout(rows.e_proj.data() + proj_offset(rows, row_begin), rows.proj_width, 0.0f)),
-        z_tri_rows(launch.layout(rows.z_tri.data() + offset(rows, row_begin), rows.width,
-                                 std::numeric_limits<float>::quiet_NaN())),
-        run_rows(launch.layout(rows.runs.data() + offset(rows, row_begin), rows.width,
-                               static_cast<std::uint8_t>(RF_RUN_MASKED))) {
-    const auto borrow = [&](const auto& data) { return cl::borrow(device.context(), data.data(), data.size()); };
-    e_cam = borrow(e_cam_rows);
-    e_proj = borrow(e_proj_rows);
-    z_tri = borrow(z_tri_rows);
-    runs = borrow(run_rows);
+  RowBuffers(cl::DeviceContext& device, const RectifiedRows& rows, int row_begin, const LaunchRows& launch,
+             const LaneRows* lanes) {
+    const ::cl::Context& context = device.context();
+    if (lanes != nullptr && launch.lanes) {
+      if (row_begin % RF_LANES != 0 || lanes->groups != (rows.height + RF_LANES - 1) / RF_LANES) {
+        throw std::invalid_argument(
+            "interleaved rows: a tile must start at a multiple of RF_LANES rows, and the "
+            "interleaved rows must be those of these rectified rows");
+      }
+      const std::size_t first = offset(rows, row_begin), count = offset(rows, launch.padded);
+      const auto part = [&](const auto& whole) { return cl::borrow(context, whole.data() + first, count); };
+      e_cam = part(lanes->e_cam);
+      e_proj =
+          cl::borrow(context, lanes->e_proj.data() + proj_offset(rows, row_begin), proj_offset(rows, launch.padded));
+      z_tri = part(lanes->z_tri);
+      runs = part(lanes->runs);
+      return;
+    }
+    e_cam_rows_ = launch.layout(rows.e_cam.data() + offset(rows, row_begin), rows.width, 0.0f);
+    e_proj_rows_ = launch.layout(rows.e_proj.data() + proj_offset(rows, row_begin), rows.proj_width, 0.0f);
+    z_tri_rows_ =
+        launch.layout(rows.z_tri.data() + offset(rows, row_begin), rows.width, std::numeric_limits<float>::quiet_NaN());
+    run_rows_ =
+        launch.layout(rows.runs.data() + offset(rows, row_begin), rows.width, static_cast<std::uint8_t>(RF_RUN_MASKED));
+    const auto borrow = [&](const auto& data) { return cl::borrow(context, data.data(), data.size()); };
+    e_cam = borrow(e_cam_rows_);
+    e_proj = borrow(e_proj_rows_);
+    z_tri = borrow(z_tri_rows_);
+    runs = borrow(run_rows_);
   }
+
+ private:
+  std::vector<float> e_cam_rows_, e_proj_rows_, z_tri_rows_;
+  std::vector<std::uint8_t> run_rows_;
 };
 
 // Sets the kernel's arguments: those both kernels share (geometry, tile, sizes), then `rest`, and runs it over the
@@ -185,14 +210,25 @@ std::vector<float> fuse_rows_reference(const RectifiedRows& rows, const std::vec
   return z;
 }
 
+LaneRows interleave_rows(const RectifiedRows& rows) {
+  const LaunchRows whole(KernelEntry::kNdRange, 0, rows.height);
+  LaneRows lanes;
+  lanes.groups = whole.padded / RF_LANES;
+  lanes.e_cam = whole.layout(rows.e_cam.data(), rows.width, 0.0f);
+  lanes.e_proj = whole.layout(rows.e_proj.data(), rows.proj_width, 0.0f);
+  lanes.z_tri = whole.layout(rows.z_tri.data(), rows.width, std::numeric_limits<float>::quiet_NaN());
+  lanes.runs = whole.layout(rows.runs.data(), rows.width, static_cast<std::uint8_t>(RF_RUN_MASKED));
+  return lanes;
+}
+
 std::vector<float> integrate_rows_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
                                          const RectifiedRows& rows, const IntegrationOptions& options, int row_begin,
-                                         int row_end, std::string_view build_options) {
+                                         int row_end, const LaneRows* lanes, std::string_view build_options) {
   check_range(rows, row_begin, row_end);
   check_options(options);
   check_entry_width(rows, entry);
   const LaunchRows launch(entry, row_begin, row_end);
-  const RowBuffers inputs(device, rows, row_begin, launch);
+  const RowBuffers inputs(device, rows, row_begin, launch, lanes);
   // z also holds each run's seed between passes. It starts defined (NaN) because a run's first pixel reads its seed
   // of the pass before, and discards it in the first pass (oclgrind reports the load otherwise).
   std::vector<float> z(static_cast<std::size_t>(launch.padded) * static_cast<std::size_t>(rows.width),
@@ -210,12 +246,12 @@ std::vector<float> integrate_rows_opencl(cl::DeviceContext& device, cl::ProgramC
 
 std::vector<float> fuse_rows_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
                                     const RectifiedRows& rows, const std::vector<float>& z_start,
-                                    const FusionOptions& options, int row_begin, int row_end,
+                                    const FusionOptions& options, int row_begin, int row_end, const LaneRows* lanes,
                                     std::string_view build_options) {
   check_fusion_start(rows, z_start, options, row_begin, row_end);
   check_entry_width(rows, entry);
   const LaunchRows launch(entry, row_begin, row_end);
-  const RowBuffers inputs(device, rows, row_begin, launch);
+  const RowBuffers inputs(device, rows, row_begin, launch, lanes);
   std::vector<float> z_launched = launch.layout(z_start.data(), rows.width, 0.0f);
   // The NDRange entry's scratch of the Thomas sweeps (the single work-item entry's is on chip), zeroed from the host:
   // every element is written before it is read, but oclgrind follows speculative loads and does not count

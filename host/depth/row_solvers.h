@@ -4,6 +4,7 @@
 // rectified camera frame, NaN where masked), so a scheduler can split the rows over devices.
 #pragma once
 
+#include <cstdint>
 #include <string_view>
 #include <vector>
 
@@ -33,15 +34,27 @@ std::vector<float> integrate_rows_reference(const RectifiedRows& rows, const Int
 std::vector<float> fuse_rows_reference(const RectifiedRows& rows, const std::vector<float>& z_start,
                                        const FusionOptions& options, int row_begin, int row_end);
 
+// The rows' inputs as the NDRange entries read them: groups of RF_LANES rows interleaved (kernels/depth/row_lanes.h),
+// the last group padded with masked rows. Made once, on every core, for all the tiles of both solvers, which lend
+// their part of it instead of each interleaving its own rows.
+struct LaneRows {
+  int groups = 0;  // of RF_LANES rows
+  std::vector<float> e_cam, e_proj, z_tri;
+  std::vector<std::uint8_t> runs;
+};
+LaneRows interleave_rows(const RectifiedRows& rows);
+
 // The kernels of `entry` on one device. The single work-item entries take rows of at most RF_MAX_ROW_WIDTH pixels
-// (kernels/common/params.h) and throw ProcessingError on wider ones. build_options are added to the program's
-// build (the FPGA target macros on PoCL, for the tests that compare the entries).
+// (kernels/common/params.h) and throw ProcessingError on wider ones. `lanes`: interleave_rows(rows), for NDRange
+// entries (row_begin a multiple of RF_LANES); without it the call interleaves its rows itself. build_options are
+// added to the program's build (the FPGA target macros on PoCL, for the tests that compare the entries).
 std::vector<float> integrate_rows_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
                                          const RectifiedRows& rows, const IntegrationOptions& options, int row_begin,
-                                         int row_end, std::string_view build_options = {});
+                                         int row_end, const LaneRows* lanes = nullptr,
+                                         std::string_view build_options = {});
 std::vector<float> fuse_rows_opencl(cl::DeviceContext& device, cl::ProgramCache& programs, KernelEntry entry,
                                     const RectifiedRows& rows, const std::vector<float>& z_start,
                                     const FusionOptions& options, int row_begin, int row_end,
-                                    std::string_view build_options = {});
+                                    const LaneRows* lanes = nullptr, std::string_view build_options = {});
 
 }  // namespace rfrecon::depth

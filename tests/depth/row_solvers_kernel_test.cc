@@ -120,6 +120,35 @@ TEST_P(RowSolversKernel, FusionMatchesReferenceOnTiles) {
   expect_close(first, reference);
 }
 
+TEST_P(RowSolversKernel, TilesLendingTheInterleavedRowsMatchReference) {
+  // Tiles [0, RF_LANES) and [RF_LANES, 11) take their inputs from interleave_rows (the second one's padded lanes
+  // past the image's end); the single work-item entry ignores them. A tile that starts inside a group is refused.
+  const LaneRows lanes = interleave_rows(rows_);
+  ASSERT_EQ(lanes.groups, 2);
+  const IntegrationOptions passes{3};
+  const auto integrated = integrate_rows_reference(rows_, passes, 0, rows_.height);
+  auto z = integrate_rows_opencl(devices_.front(), programs_, GetParam(), rows_, passes, 0, RF_LANES, &lanes);
+  const auto rest =
+      integrate_rows_opencl(devices_.front(), programs_, GetParam(), rows_, passes, RF_LANES, rows_.height, &lanes);
+  z.insert(z.end(), rest.begin(), rest.end());
+  expect_close(z, integrated);
+
+  const FusionOptions options;
+  const auto split = integrated.begin() + std::ptrdiff_t{RF_LANES} * rows_.width;
+  const std::vector<float> start_first(integrated.begin(), split), start_second(split, integrated.end());
+  auto fused =
+      fuse_rows_opencl(devices_.front(), programs_, GetParam(), rows_, start_first, options, 0, RF_LANES, &lanes);
+  const auto fused_rest = fuse_rows_opencl(devices_.front(), programs_, GetParam(), rows_, start_second, options,
+                                           RF_LANES, rows_.height, &lanes);
+  fused.insert(fused.end(), fused_rest.begin(), fused_rest.end());
+  expect_close(fused, fuse_rows_reference(rows_, integrated, options, 0, rows_.height));
+
+  if (GetParam() == KernelEntry::kNdRange) {
+    EXPECT_THROW(integrate_rows_opencl(devices_.front(), programs_, GetParam(), rows_, passes, 3, rows_.height, &lanes),
+                 std::invalid_argument);
+  }
+}
+
 TEST_P(RowSolversKernel, RowsOfDifferentRunsSideBySideMatchReference) {
   // 19 rows in one tile: two whole groups of RF_LANES rows and a padded one on the NDRange entry, whose lanes meet
   // masked pixels, run starts and ends at different columns: a row masked at its start, one cut in three runs, one

@@ -45,7 +45,7 @@ TEST_P(FpgaMacrosOnPocl, IntegrationSingleEqualsNdRange) {
   cl::DeviceContext& device = devices_.front();
   for (const auto& [begin, end] : {std::pair{0, 5}, std::pair{5, rows_.height}}) {
     expect_close(integrate_rows_opencl(device, programs_, KernelEntry::kSingleWorkItem, rows_, options, begin, end,
-                                       this->options()),
+                                       nullptr, this->options()),
                  integrate_rows_opencl(device, programs_, KernelEntry::kNdRange, rows_, options, begin, end));
   }
 }
@@ -58,7 +58,7 @@ TEST_P(FpgaMacrosOnPocl, FusionSingleEqualsNdRange) {
   const std::vector<float> start_first(start.begin(), split), start_second(split, start.end());
   for (const auto& [begin, end, z] : {std::tuple{0, 3, start_first}, std::tuple{3, rows_.height, start_second}}) {
     expect_close(fuse_rows_opencl(device, programs_, KernelEntry::kSingleWorkItem, rows_, z, options, begin, end,
-                                  this->options()),
+                                  nullptr, this->options()),
                  fuse_rows_opencl(device, programs_, KernelEntry::kNdRange, rows_, z, options, begin, end));
   }
 }
