@@ -135,10 +135,15 @@ class RowBuffers {
              const LaneRows* lanes) {
     const ::cl::Context& context = device.context();
     if (lanes != nullptr && launch.lanes) {
-      if (row_begin % RF_LANES != 0 || lanes->groups != (rows.height + RF_LANES - 1) / RF_LANES) {
-        throw std::invalid_argument(
-            "interleaved rows: a tile must start at a multiple of RF_LANES rows, and the "
-            "interleaved rows must be those of these rectified rows");
+      const int padded_height = (rows.height + RF_LANES - 1) / RF_LANES * RF_LANES;
+      const std::size_t camera = offset(rows, padded_height), projector = proj_offset(rows, padded_height);
+      if (lanes->groups * RF_LANES != padded_height || lanes->e_cam.size() != camera ||
+          lanes->e_proj.size() != projector || lanes->z_tri.size() != camera || lanes->runs.size() != camera) {
+        throw std::invalid_argument("interleaved rows: not those of these rectified rows (interleave_rows(rows))");
+      }
+      if (row_begin % RF_LANES != 0) {
+        throw std::invalid_argument("interleaved rows: the tile starts at row " + std::to_string(row_begin) +
+                                    ", not at a multiple of RF_LANES = " + std::to_string(RF_LANES));
       }
       const std::size_t first = offset(rows, row_begin), count = offset(rows, launch.padded);
       const auto part = [&](const auto& whole) { return cl::borrow(context, whole.data() + first, count); };

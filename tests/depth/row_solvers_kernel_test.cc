@@ -122,7 +122,8 @@ TEST_P(RowSolversKernel, FusionMatchesReferenceOnTiles) {
 
 TEST_P(RowSolversKernel, TilesLendingTheInterleavedRowsMatchReference) {
   // Tiles [0, RF_LANES) and [RF_LANES, 11) take their inputs from interleave_rows (the second one's padded lanes
-  // past the image's end); the single work-item entry ignores them. A tile that starts inside a group is refused.
+  // past the image's end); the single work-item entry ignores them. A tile that starts inside a group, and the
+  // interleaved rows of narrower rows, are refused.
   const LaneRows lanes = interleave_rows(rows_);
   ASSERT_EQ(lanes.groups, 2);
   const IntegrationOptions passes{3};
@@ -145,6 +146,9 @@ TEST_P(RowSolversKernel, TilesLendingTheInterleavedRowsMatchReference) {
 
   if (GetParam() == KernelEntry::kNdRange) {
     EXPECT_THROW(integrate_rows_opencl(devices_.front(), programs_, GetParam(), rows_, passes, 3, rows_.height, &lanes),
+                 std::invalid_argument);
+    const LaneRows narrower = interleave_rows(testing::analytic_rows(testing::tilted_plane(), 16, rows_.height));
+    EXPECT_THROW(integrate_rows_opencl(devices_.front(), programs_, GetParam(), rows_, passes, 0, RF_LANES, &narrower),
                  std::invalid_argument);
   }
 }
