@@ -9,8 +9,10 @@
 // without --scan it goes to a temporary directory, removed at exit. BM_FusedScan takes the frames from memory, as a
 // camera SDK hands them over (capture::FrameSource::from_callback over the decoded 16-bit frames), so that
 // pipeline_seconds counts their linearisation but no file, and each scan's transport reuses the memory of the one
-// before, as a scanner's loop does; BM_FusedScanFromFiles reads the PNG files on the default reader threads and
-// allocates anew, as `rfrecon transport` does.
+// before, in a process that keeps the memory it frees (keep_freed_memory), as a scanner's loop does;
+// BM_FusedScanFromFiles reads the PNG files on the default reader threads and allocates its transport anew, as
+// `rfrecon transport` does (in the same process). Counters are medians over the iterations.
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -34,6 +36,7 @@
 #include "host/capture/frame_source.h"
 #include "host/capture/manifest.h"
 #include "host/cl/device_selection.h"
+#include "host/core/freed_memory.h"
 #include "host/depth/reconstruct_depth.h"
 #include "host/transport/compute_transport.h"
 #include "host/transport/transport_file.h"
@@ -180,6 +183,31 @@ ScanRun run_scan(const capture::FrameSource& frames, bool gray_only, depth::Meth
   return run;
 }
 
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n == 0 ? 0.0 : n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// The scans of a benchmark's iterations but the first (which builds the programs and allocates), each stage's seconds
+// and the whole's their medians (so the stages need not add up to the whole); the rest from the last scan.
+ScanRun median_scan(const std::vector<ScanRun>& runs) {
+  if (runs.size() < 2) throw std::runtime_error("pipeline_bench: a benchmark needs two iterations at least");
+  ScanRun result = runs.back();
+  const auto later = [&](const auto& figure) {
+    std::vector<double> values;
+    for (std::size_t i = 1; i < runs.size(); ++i) values.push_back(figure(runs[i]));
+    return median(values);
+  };
+  for (auto& entry : result.seconds) {
+    const std::string& stage = entry.first;
+    entry.second =
+        later([&](const ScanRun& run) { return run.seconds.count(stage) != 0 ? run.seconds.at(stage) : 0.0; });
+  }
+  result.total_seconds = later([](const ScanRun& run) { return run.total_seconds; });
+  return result;
+}
+
 std::size_t frame_count(bool gray_only) { return manifest(gray_only).frames.size(); }
 // The camera's 16-bit samples, as the kernels read them (white and black aside, made linear once on the host).
 double frame_bytes() { return static_cast<double>(kCamera.area()) * sizeof(std::uint16_t); }
@@ -198,15 +226,16 @@ capture::FrameSource frames_in_memory(bool gray_only) {
   return capture::FrameSource::from_callback([&frames](std::size_t i) { return frames.at(i); }, "frames in memory");
 }
 
-// Fused pipeline from frames in memory. Counters, from the last iteration (the first builds the programs): each
+// Fused pipeline from frames in memory. Counters, medians over the iterations but the first (median_scan): each
 // stage's seconds, pipeline_seconds (all of them; the rig's geometry, computed once before, is rig_geometry_seconds),
 // the transport's minimal bytes (every frame's 16-bit samples read once, T written once) against the roofline,
 // compression's fraction of it (dot frames' bytes / compress seconds), the integration's Mpx/s.
 void BM_FusedScan(benchmark::State& state) {
   const capture::FrameSource frames = frames_in_memory(false);
-  ScanRun run;
+  std::vector<ScanRun> runs;
   transport::CompressedTransport storage;
-  for (auto _ : state) run = run_scan(frames, false, depth::Method::kFused, &storage);
+  for (auto _ : state) runs.push_back(run_scan(frames, false, depth::Method::kFused, &storage));
+  ScanRun run = median_scan(runs);
   for (const auto& [stage, seconds] : run.seconds) state.counters[stage + "_seconds"] = seconds;
   state.counters["pipeline_seconds"] = run.total_seconds;
   const double roofline = bench::host_stream_bytes_per_second();
@@ -223,8 +252,9 @@ void BM_FusedScan(benchmark::State& state) {
 
 // The same scan from the PNG files, read on transport::kDefaultReaders threads while the devices work.
 void BM_FusedScanFromFiles(benchmark::State& state) {
-  ScanRun run;
-  for (auto _ : state) run = run_scan(capture_dir(), false, depth::Method::kFused);
+  std::vector<ScanRun> runs;
+  for (auto _ : state) runs.push_back(run_scan(capture_dir(), false, depth::Method::kFused));
+  const ScanRun run = median_scan(runs);
   for (const auto& [stage, seconds] : run.seconds) state.counters[stage + "_seconds"] = seconds;
   state.counters["pipeline_with_reading_seconds"] = run.total_seconds;
 }
@@ -233,9 +263,10 @@ void BM_FusedScanFromFiles(benchmark::State& state) {
 // memory as OpenCV's are.
 void BM_GrayTriangulation(benchmark::State& state) {
   const capture::FrameSource frames = frames_in_memory(true);
-  ScanRun run;
+  std::vector<ScanRun> runs;
   transport::CompressedTransport storage;
-  for (auto _ : state) run = run_scan(frames, true, depth::Method::kTriangulate, &storage);
+  for (auto _ : state) runs.push_back(run_scan(frames, true, depth::Method::kTriangulate, &storage));
+  ScanRun run = median_scan(runs);
   for (const auto& [stage, seconds] : run.seconds) state.counters[stage + "_seconds"] = seconds;
   state.counters["pipeline_seconds"] = run.total_seconds;
   state.counters["decode_speedup_vs_opencv"] = shared().opencv_decode_seconds / run.seconds["decode"];
@@ -271,7 +302,7 @@ void BM_GrayTriangulationOpenCV(benchmark::State& state) {
   cv::Mat P_proj(3, 4, CV_64F);
   cv::hconcat(rig.R, rig.T, P_proj);
   std::size_t points = 0;
-  double decode_seconds = 0.0;
+  std::vector<double> decode_seconds, pipeline_seconds;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
     const cv::Mat lit = (frames[0] - frames[1]) > 10;
@@ -285,7 +316,7 @@ void BM_GrayTriangulationOpenCV(benchmark::State& state) {
         }
       }
     }
-    decode_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    decode_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     std::vector<cv::Point2f> camera_rays, projector_rays;
     cv::undistortPoints(camera_px, camera_rays, rig.camera_matrix, rig.dist_coeffs);
     cv::undistortPoints(projector_px, projector_rays, rig.projector_matrix, rig.projector_dist_coeffs);
@@ -293,16 +324,19 @@ void BM_GrayTriangulationOpenCV(benchmark::State& state) {
     cv::triangulatePoints(P_cam, P_proj, camera_rays, projector_rays, homogeneous);
     points = camera_px.size();
     benchmark::DoNotOptimize(homogeneous.data);
+    pipeline_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   state.counters["points"] = static_cast<double>(points);
-  state.counters["decode_seconds"] = decode_seconds;
-  shared().opencv_decode_seconds = decode_seconds;
+  state.counters["pipeline_seconds"] = median(pipeline_seconds);
+  state.counters["decode_seconds"] = median(decode_seconds);
+  shared().opencv_decode_seconds = median(decode_seconds);
 }
 
-// Wall-clock time throughout (the devices' work runs in PoCL's threads). Each iteration is a whole scan of seconds.
-BENCHMARK(BM_GrayTriangulationOpenCV)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
-BENCHMARK(BM_GrayTriangulation)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
-BENCHMARK(BM_FusedScan)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+// Wall-clock time throughout (the devices' work runs in PoCL's threads). Each iteration is a whole scan of seconds;
+// the counters are medians over the iterations (but the first, for rfrecon's: median_scan).
+BENCHMARK(BM_GrayTriangulationOpenCV)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+BENCHMARK(BM_GrayTriangulation)->Unit(benchmark::kMillisecond)->Iterations(6)->UseRealTime();
+BENCHMARK(BM_FusedScan)->Unit(benchmark::kMillisecond)->Iterations(6)->UseRealTime();
 BENCHMARK(BM_FusedScanFromFiles)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 
 }  // namespace
@@ -346,10 +380,13 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", error.what());
     return 3;
   }
+  // The benchmarks' process scans again and again, as a scanner does: it keeps the memory it frees (the child that
+  // measured the peak resident memory above did not, as `rfrecon` does not).
+  benchmark::AddCustomContext("keep_freed_memory", keep_freed_memory() ? "yes" : "no (malloc is not glibc's)");
   rfrecon::bench::RecordingReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
   const auto ratio = [](double a, double b) { return b > 0.0 ? a / b : 0.0; };
-  const double opencv = reporter.seconds("BM_GrayTriangulationOpenCV");
+  const double opencv = reporter.counter("BM_GrayTriangulationOpenCV", "pipeline_seconds");
   std::printf("\nfused scan: %.3f s from frames in memory, %.3f s from PNG files, peak resident memory %.0f MB\n",
               reporter.counter("BM_FusedScan", "pipeline_seconds"),
               reporter.counter("BM_FusedScanFromFiles", "pipeline_with_reading_seconds"), shared().peak_rss_mb);

@@ -100,9 +100,9 @@ struct CompressedTransport {
 // scans do not map, zero and fault in a new hundred megabytes each time; the arrays grow where it is too small.
 CompressedTransport make_empty_transport(const TransportSetup& setup, CompressedTransport storage = {});
 
-// The same without T's rows (indices and weights have no element, their memory kept): the decoding's state, which
-// add_empty_rows completes when the compression needs them, so that decoding does not pay for the rows' memory
-// (N * K entries).
+// The same without T's rows: the decoding's state, which add_empty_rows completes when the compression needs them,
+// so that decoding does not pay for the rows' memory (N * K entries). Rows of `storage` of that size already are
+// kept as they are (stale) for add_empty_rows to refill on every core; others are dropped, their memory kept.
 CompressedTransport make_empty_decoding(const TransportSetup& setup, CompressedTransport storage = {});
 void add_empty_rows(CompressedTransport& transport);
 
