@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <vector>
 
-#include <opencv2/core.hpp>
+#include "host/core/parallel_rows.h"
 
 namespace rfrecon {
 
@@ -21,10 +21,9 @@ template <typename T>
 void assign_on_huge_pages(std::vector<T>& values, std::size_t count, const T& value) {
   if (values.size() == count) {
     constexpr std::size_t kBlock = (std::size_t{1} << 20) / sizeof(T);
-    const auto blocks = static_cast<int>((count + kBlock - 1) / kBlock);
-    cv::parallel_for_(cv::Range(0, blocks), [&](const cv::Range& range) {
-      const std::size_t begin = static_cast<std::size_t>(range.start) * kBlock;
-      const std::size_t end = std::min(count, static_cast<std::size_t>(range.end) * kBlock);
+    for_each_row(static_cast<int>((count + kBlock - 1) / kBlock), [&](int block) {
+      const std::size_t begin = static_cast<std::size_t>(block) * kBlock;
+      const std::size_t end = std::min(count, begin + kBlock);
       std::fill(values.begin() + static_cast<std::ptrdiff_t>(begin), values.begin() + static_cast<std::ptrdiff_t>(end),
                 value);
     });
