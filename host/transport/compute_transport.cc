@@ -98,6 +98,45 @@ std::vector<Step> plan_steps(const FrameIndex& index, const capture::CaptureMani
   return steps;
 }
 
+// Consecutive steps given to the devices as one call per block, steps [first, end): up to RF_FRAME_BATCH frames of
+// Gray pairs (with finish_gray after the last) or of dot frames, the frames of one kernel launch; finish alone. Each
+// call is a hand-over between threads (the tile timeout's), so one per launch rather than one per frame.
+struct Launch {
+  std::size_t first = 0;
+  std::size_t end = 0;
+};
+
+// Whether `step` may share the launch that `first` began.
+bool same_launch(const Step& first, const Step& step) {
+  switch (step.kind) {
+    case Step::Kind::kGrayPair:
+    case Step::Kind::kFinishGray:
+      return first.kind == Step::Kind::kGrayPair;
+    case Step::Kind::kDot:
+      return first.kind == Step::Kind::kDot;
+    case Step::Kind::kFinish:
+      break;
+  }
+  return false;
+}
+
+std::vector<Launch> plan_launches(const std::vector<Step>& steps) {
+  std::vector<Launch> launches;
+  std::size_t frames = 0;  // in the last launch
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const std::size_t more = steps[i].frames.size();
+    if (!launches.empty() && same_launch(steps[launches.back().first], steps[i]) &&
+        frames + more <= static_cast<std::size_t>(RF_FRAME_BATCH)) {
+      launches.back().end = i + 1;
+      frames += more;
+    } else {
+      launches.push_back({i, i + 1});
+      frames = more;
+    }
+  }
+  return launches;
+}
+
 // Feeds one step to an accumulator: `frames` are the step's frames, white/black the capture's (or row blocks of
 // them). The finish step is not applied here (it returns the transport).
 void apply(TransportAccumulator& accumulator, const Step& step, const std::vector<cv::Mat>& frames,
@@ -189,16 +228,19 @@ capture::FrameForm frame_form(const TransportSetup& setup) {
 class TransportBlocks final : public sched::BlockTask {
  public:
   TransportBlocks(const capture::FrameSource& source, const OpenedCapture& capture, const std::vector<Step>& steps,
-                  const std::vector<sched::Tile>& blocks, cl::ProgramCache& programs, CompressedTransport storage)
+                  const std::vector<Launch>& launches, const std::vector<sched::Tile>& blocks,
+                  cl::ProgramCache& programs, CompressedTransport storage)
       : source_(source),
         capture_(capture),
         steps_(steps),
+        launches_(launches),
         blocks_(blocks),
         programs_(programs),
         storage_(std::move(storage)),
         accumulators_(blocks.size()),
         results_(blocks.size()) {}
 
+  // The current launch's frames, its steps' frames in order.
   void set_frames(std::vector<cv::Mat> frames) { frames_ = std::move(frames); }
 
   void prepare(sched::Worker& worker) override {
@@ -215,21 +257,26 @@ class TransportBlocks final : public sched::BlockTask {
                                                    blocks_.size() == 1 ? std::move(storage_) : CompressedTransport{});
   }
 
-  void step(sched::Worker& worker, std::size_t block, std::size_t index, bool replay) override {
-    const Step& step = steps_[index];
+  // Runner step `launch`: the launch's steps in order.
+  void step(sched::Worker& worker, std::size_t block, std::size_t launch, bool replay) override {
     // Held by the call: after a timeout the block's next owner replaces it while this call may still run.
     const std::shared_ptr<TransportAccumulator> accumulator = accumulators_[block];
-    if (step.kind == Step::Kind::kFinish) {
-      CompressedTransport result = accumulator->finish();
-      worker.deliver([&] { results_[block] = std::move(result); });
-      return;
+    std::size_t next_frame = 0;  // in frames_
+    for (std::size_t index = launches_[launch].first; index < launches_[launch].end; ++index) {
+      const Step& step = steps_[index];
+      if (step.kind == Step::Kind::kFinish) {
+        CompressedTransport result = accumulator->finish();
+        worker.deliver([&] { results_[block] = std::move(result); });
+        return;
+      }
+      std::vector<cv::Mat> frames;
+      for (const std::size_t frame : step.frames) {
+        frames.push_back(rows(
+            replay ? source_.load(capture_.manifest, frame, frame_form(capture_.setup)) : frames_[next_frame], block));
+        ++next_frame;
+      }
+      apply(*accumulator, step, frames, rows(capture_.white, block), rows(capture_.black, block));
     }
-    std::vector<cv::Mat> frames;
-    for (std::size_t i = 0; i < step.frames.size(); ++i) {
-      frames.push_back(rows(
-          replay ? source_.load(capture_.manifest, step.frames[i], frame_form(capture_.setup)) : frames_[i], block));
-    }
-    apply(*accumulator, step, frames, rows(capture_.white, block), rows(capture_.black, block));
   }
 
   // The blocks' transports stacked into the whole camera image (moved out, once).
@@ -261,10 +308,11 @@ class TransportBlocks final : public sched::BlockTask {
   const capture::FrameSource& source_;
   const OpenedCapture& capture_;
   const std::vector<Step>& steps_;
+  const std::vector<Launch>& launches_;
   const std::vector<sched::Tile>& blocks_;
   cl::ProgramCache& programs_;
   CompressedTransport storage_;
-  std::vector<cv::Mat> frames_;  // the current step's frames
+  std::vector<cv::Mat> frames_;  // the current launch's frames
   std::vector<std::shared_ptr<TransportAccumulator>> accumulators_;
   std::vector<CompressedTransport> results_;
 };
@@ -325,27 +373,33 @@ TransportRun compute_transport_on_devices(const capture::FrameSource& frames, ca
     });
   });
   const std::vector<Step> steps = plan_steps(capture.index, capture.manifest);
+  const std::vector<Launch> launches = plan_launches(steps);
   const auto rows = static_cast<std::size_t>(capture.setup.camera_size.height);
   const std::vector<sched::Tile> blocks =
       sched::split_rows(rows, devices.size() == 1 ? 1 : kBlocksPerDevice * devices.size());
-  TransportBlocks task(frames, capture, steps, blocks, programs, std::move(storage));
+  TransportBlocks task(frames, capture, steps, launches, blocks, programs, std::move(storage));
   sched::BlockOptions options;
   options.items_per_row = static_cast<std::size_t>(capture.setup.camera_size.width);
   options.entries = entries;
   sched::BlockRunner runner(devices, blocks, task, options);
 
-  // The frames of the next steps are read on `readers` threads while the devices work on the current one.
+  // The frames of the next steps are read on `readers` threads while the devices work on the current launch.
   std::vector<std::vector<std::size_t>> groups(steps.size());
   std::transform(steps.begin(), steps.end(), groups.begin(), [](const Step& step) { return step.frames; });
   capture::FrameReadAhead read_ahead(frames, capture.manifest, std::move(groups), readers,
                                      2 * static_cast<std::size_t>(readers), frame_form(capture.setup));
   SubpixelGray subpixel(capture.setup, clock);
-  for (std::size_t i = 0; i < steps.size(); ++i) {
-    std::vector<cv::Mat> step_frames = clock.time("read frames", [&] { return read_ahead.take(i); });
-    progress.advance(steps[i].frames.size());
-    subpixel.add(steps[i], step_frames, capture.setup);
-    task.set_frames(std::move(step_frames));
-    clock.time(steps[i].stage(), [&] { runner.run_step(i, steps[i].stage()); });
+  for (std::size_t l = 0; l < launches.size(); ++l) {
+    std::vector<cv::Mat> launch_frames;
+    for (std::size_t i = launches[l].first; i < launches[l].end; ++i) {
+      std::vector<cv::Mat> step_frames = clock.time("read frames", [&] { return read_ahead.take(i); });
+      progress.advance(steps[i].frames.size());
+      subpixel.add(steps[i], step_frames, capture.setup);
+      launch_frames.insert(launch_frames.end(), step_frames.begin(), step_frames.end());
+    }
+    task.set_frames(std::move(launch_frames));
+    const char* stage = steps[launches[l].first].stage();
+    clock.time(stage, [&] { runner.run_step(l, stage); });
   }
   TransportRun run;
   run.transport = clock.time("finalize", [&] { return task.assemble(); });

@@ -46,18 +46,19 @@ using rfrecon::testing::kHangsUntimed;
 using rfrecon::testing::ScopedEnv;
 
 struct Capture {
+  int dot_spacing = 3;
   testing::PlaneScene scene;
   std::vector<capture::Pattern> sequence;
   std::vector<cv::Mat> frames;
 };
 
-Capture tiny_capture() {
+Capture tiny_capture(int dot_spacing = 3) {
   testing::SceneOptions options;
   options.camera_size = {24, 20};
   options.projector_size = {16, 12};
-  Capture capture{testing::make_plane_scene(options), {}, {}};
-  capture.sequence = capture::make_protocol({options.projector_size, 3});
-  capture.frames = testing::render_frames(capture.scene, capture.sequence, 3, 1.0, 7);
+  Capture capture{dot_spacing, testing::make_plane_scene(options), {}, {}};
+  capture.sequence = capture::make_protocol({options.projector_size, dot_spacing});
+  capture.frames = testing::render_frames(capture.scene, capture.sequence, dot_spacing, 1.0, 7);
   return capture;
 }
 
@@ -74,8 +75,8 @@ class MultiDeviceTest : public ::testing::Test {
 
   transport::CompressedTransport reference_transport() {
     const auto linear = testing::linearize(capture_.frames);
-    auto accumulator =
-        transport::make_reference_accumulator(testing::setup_for(linear, capture_.scene.projector_size, 3, 4));
+    auto accumulator = transport::make_reference_accumulator(
+        testing::setup_for(linear, capture_.scene.projector_size, capture_.dot_spacing, 4));
     return testing::feed_all(*accumulator, capture_.sequence, linear);
   }
 
@@ -154,9 +155,11 @@ TEST_F(MultiDeviceTest, DualSurvivesAHungDevice) {
 
 class TransportOnDevicesTest : public MultiDeviceTest {
  protected:
+  // Dot spacing 12: 144 dot frames, 9 launches of the default RF_FRAME_BATCH (16), 11 steps in all.
   void SetUp() override {
     MultiDeviceTest::SetUp();
-    testing::write_capture(dir_.path(), capture_.scene, capture_.sequence, 3, capture_.frames);
+    capture_ = tiny_capture(12);
+    testing::write_capture(dir_.path(), capture_.scene, capture_.sequence, capture_.dot_spacing, capture_.frames);
     setup_.entries_per_pixel = 4;
   }
 
@@ -173,8 +176,9 @@ class TransportOnDevicesTest : public MultiDeviceTest {
         .transport;
   }
 
-  // Device 1 fails or hangs (`faults`) after both Gray axes have started, so the replay has frames to re-read: the
-  // transport is still the single-device one, and the failure is reported.
+  // Device 1 fails or hangs (`faults`) at its 8th block step: it owns 1 to 7 of the 8 blocks, so that is in a later
+  // step than the first and within the 11 steps, and the replay has frames to re-read: the transport is still the
+  // single-device one, and the failure is reported.
   // Before a short tile timeout: a kernel build slower than it (a loaded machine) would be taken as a hang, and its
   // thread, still building, would outlive the objects of the stage (docs/scheduler.md, "What it cannot fence").
   void build_kernels() {
@@ -205,28 +209,45 @@ class TransportOnDevicesTest : public MultiDeviceTest {
   transport::TransportSetup setup_;
 };
 
+// Each block gets one call per kernel launch (RF_FRAME_BATCH frames), not one per frame: a stage's block steps are
+// its launches times the blocks.
+std::size_t launches(const std::vector<capture::Pattern>& sequence, const std::string& stage) {
+  std::size_t frames = 0;
+  for (const auto& pattern : sequence) {
+    const bool gray =
+        pattern.kind == capture::PatternKind::kGrayColumn || pattern.kind == capture::PatternKind::kGrayRow;
+    if (stage == "decode" ? gray : pattern.kind == capture::PatternKind::kDot) ++frames;
+  }
+  return stage == "finalize" ? 1 : (frames + RF_FRAME_BATCH - 1) / RF_FRAME_BATCH;
+}
+
 TEST_F(TransportOnDevicesTest, EqualsTheSingleDeviceTransport) {
   const auto run = on_devices();
   expect_identical(run.transport, on_first_device());
-  ASSERT_FALSE(run.schedule.empty());
+  ASSERT_EQ(run.schedule.size(), 3u);
   EXPECT_EQ(run.schedule.front().stage, "decode");
+  const std::size_t blocks = devices_.size() == 1 ? 1 : transport::kBlocksPerDevice * devices_.size();
   for (const auto& stage : run.schedule) {
-    std::size_t rows_done = 0;
-    for (const auto& device : stage.devices) rows_done += device.items;
+    std::size_t rows_done = 0, block_steps = 0;
+    for (const auto& device : stage.devices) {
+      rows_done += device.items;
+      block_steps += device.tiles;
+    }
     EXPECT_EQ(rows_done, stage.items);
+    EXPECT_EQ(block_steps, blocks * launches(capture_.sequence, stage.stage)) << stage.stage;
     EXPECT_TRUE(stage.failures.empty());
   }
 }
 
 TEST_F(TransportOnDevicesTest, FailedDeviceBlocksAreReplayedElsewhere) {
   if (devices_.size() < 2) GTEST_SKIP() << kNeedTwoDevices;
-  expect_blocks_replayed_after("1:12", false);
+  expect_blocks_replayed_after("1:8", false);
 }
 
 TEST_F(TransportOnDevicesTest, HungDeviceBlocksAreReplayedElsewhere) {
   if (devices_.size() < 2) GTEST_SKIP() << kNeedTwoDevices;
   const ScopedEnv timeout(kTileTimeoutEnv, "0.5");
-  expect_blocks_replayed_after("hang:1:12", true);
+  expect_blocks_replayed_after("hang:1:8", true);
 }
 
 TEST_F(TransportOnDevicesTest, EveryDeviceFailingIsAClearOpenClError) {
