@@ -7,6 +7,8 @@
 #include <optional>
 #include <stdexcept>
 
+#include <opencv2/core/hal/hal.hpp>
+
 namespace rfrecon::transport {
 
 namespace {
@@ -49,11 +51,26 @@ Boundaries usable_boundaries(const std::array<std::vector<float>, 2>& crossing, 
   return b;
 }
 
-struct BoundaryPoint {
-  double dx;  // camera px from the fitted pixel's centre
-  double dy;
-  double value;   // projector px
-  double weight;  // Gaussian of the distance
+// The boundary points of one window, field by field (a loop that builds whole structs through the stack stalled on
+// store forwarding).
+struct BoundaryPoints {
+  std::vector<double> dx;  // camera px from the fitted pixel's centre
+  std::vector<double> dy;
+  std::vector<double> value;     // projector px, less the fitted pixel's code
+  std::vector<double> exponent;  // -distance^2 / (2 sigma^2)
+  std::vector<double> weight;    // its exponential
+
+  std::size_t size() const { return dx.size(); }
+  void clear() {
+    dx.clear();
+    dy.clear();
+    value.clear();
+  }
+  void add(double x, double y, double v) {
+    dx.push_back(x);
+    dy.push_back(y);
+    value.push_back(v);
+  }
 };
 
 // value = a + b dx + c dy.
@@ -64,44 +81,47 @@ struct Plane {
   double at(double dx, double dy) const { return a + b * dx + c * dy; }
 };
 
-// The weighted least-squares plane through `points`, when there are enough of them, with two values at least, spread
-// in both directions (the weighted covariance of their positions).
-std::optional<Plane> fit_plane(const std::vector<BoundaryPoint>& points, const GraySubpixelOptions& options) {
-  if (static_cast<int>(points.size()) < options.min_points) return std::nullopt;
-  double n = 0, mx = 0, my = 0, mv = 0, lo = points.front().value, hi = lo;
-  for (const auto& p : points) {
-    n += p.weight;
-    mx += p.weight * p.dx;
-    my += p.weight * p.dy;
-    mv += p.weight * p.value;
-    lo = std::min(lo, p.value);
-    hi = std::max(hi, p.value);
+// Weighted sums of a set of points, added one at a time, for the plane through them. The values are relative to the
+// pixel's code (a few px), so the moments about the means lose nothing to cancellation.
+struct Moments {
+  int count = 0;
+  double w = 0, x = 0, y = 0, v = 0, xx = 0, xy = 0, yy = 0, xv = 0, yv = 0;
+  double lo = std::numeric_limits<double>::infinity(), hi = -std::numeric_limits<double>::infinity();
+
+  void add(const BoundaryPoints& points, std::size_t i) {
+    const double weight = points.weight[i], dx = points.dx[i], dy = points.dy[i], value = points.value[i];
+    ++count;
+    const double wx = weight * dx, wy = weight * dy;
+    w += weight;
+    x += wx;
+    y += wy;
+    v += weight * value;
+    xx += wx * dx;
+    xy += wx * dy;
+    yy += wy * dy;
+    xv += wx * value;
+    yv += wy * value;
+    lo = std::min(lo, value);
+    hi = std::max(hi, value);
   }
-  if (!(hi > lo)) return std::nullopt;
-  mx /= n;
-  my /= n;
-  mv /= n;
-  double cxx = 0, cxy = 0, cyy = 0, cxv = 0, cyv = 0;  // centred moments
-  for (const auto& p : points) {
-    const double x = p.dx - mx, y = p.dy - my, v = p.value - mv;
-    cxx += p.weight * x * x;
-    cxy += p.weight * x * y;
-    cyy += p.weight * y * y;
-    cxv += p.weight * x * v;
-    cyv += p.weight * y * v;
+
+  // The weighted least-squares plane, when there are enough points, with two values at least, spread in both
+  // directions (the weighted covariance of their positions).
+  std::optional<Plane> plane(const GraySubpixelOptions& options) const {
+    if (count < options.min_points || !(hi > lo)) return std::nullopt;
+    const double mx = x / w, my = y / w, mv = v / w;
+    const double cxx = xx / w - mx * mx, cxy = xy / w - mx * my, cyy = yy / w - my * my;
+    const double cxv = xv / w - mx * mv, cyv = yv / w - my * mv;
+    const double min_eigen = 0.5 * (cxx + cyy) - std::sqrt(0.25 * (cxx - cyy) * (cxx - cyy) + cxy * cxy);
+    if (min_eigen < options.min_spread_px2) return std::nullopt;
+    const double det = cxx * cyy - cxy * cxy;
+    Plane fitted;
+    fitted.b = (cyy * cxv - cxy * cyv) / det;
+    fitted.c = (cxx * cyv - cxy * cxv) / det;
+    fitted.a = mv - fitted.b * mx - fitted.c * my;
+    return fitted;
   }
-  cxx /= n;
-  cxy /= n;
-  cyy /= n;
-  const double min_eigen = 0.5 * (cxx + cyy) - std::sqrt(0.25 * (cxx - cyy) * (cxx - cyy) + cxy * cxy);
-  if (min_eigen < options.min_spread_px2) return std::nullopt;
-  const double det = cxx * cyy - cxy * cxy;
-  Plane plane;
-  plane.b = (cyy * cxv - cxy * cyv) / (det * n);
-  plane.c = (cxx * cyv - cxy * cxv) / (det * n);
-  plane.a = mv - plane.b * mx - plane.c * my;
-  return plane;
-}
+};
 
 // The boundary points of one axis code around a camera pixel.
 struct Window {
@@ -111,28 +131,38 @@ struct Window {
   const GraySubpixelOptions& options;
 
   // Points within radius_px (in x and y) of pixel (x, y) whose value lies within 1 + max_slope * distance of the
-  // pixel's code `own` (the others belong to another surface, across an occlusion edge), weighted by distance.
-  void gather(int x, int y, double own, std::vector<BoundaryPoint>& points) const {
+  // pixel's code `own` (the others belong to another surface, across an occlusion edge), their values less `own`,
+  // weighted by distance. The weights come in a loop of their own: a call to exp among the other arithmetic made
+  // the compiler keep every other value in memory around it.
+  void gather(int x, int y, double own, BoundaryPoints& points) const {
     const int r = options.radius_px;
-    const double two_sigma2 = 2.0 * options.weight_sigma_px * options.weight_sigma_px;
     points.clear();
+    const auto consider = [&](float value, double dx, double dy) {
+      if (std::fabs(dx) > r || std::fabs(dy) > r) return;
+      const double offset = value - own;
+      if (std::fabs(offset) > options.max_slope * std::sqrt(dx * dx + dy * dy) + 1.0) return;
+      points.add(dx, dy, offset);
+    };
     // Pairs start at most one pixel left of or above the window, where their crossing may lie inside it.
     for (int v = std::max(y - r - 1, 0); v <= std::min(y + r, size.height - 1); ++v) {
+      const std::size_t row = static_cast<std::size_t>(v) * static_cast<std::size_t>(size.width);
+      const float* right = boundaries[0].data() + row;
+      const float* down = boundaries[1].data() + row;
+      const float* right_t = crossing[0].data() + row;
+      const float* down_t = crossing[1].data() + row;
       for (int u = std::max(x - r - 1, 0); u <= std::min(x + r, size.width - 1); ++u) {
-        const std::size_t b = static_cast<std::size_t>(v) * size.width + u;
-        for (int direction = 0; direction < 2; ++direction) {
-          const float value = boundaries[direction][b];
-          if (std::isnan(value)) continue;
-          const double t = crossing[direction][b];
-          const double dx = u - x + (direction == 0 ? t : 0.0);
-          const double dy = v - y + (direction == 1 ? t : 0.0);
-          const double distance2 = dx * dx + dy * dy;
-          if (std::fabs(dx) > r || std::fabs(dy) > r) continue;
-          if (std::fabs(value - own) > options.max_slope * std::sqrt(distance2) + 1.0) continue;
-          points.push_back({dx, dy, value, std::exp(-distance2 / two_sigma2)});
-        }
+        if (!std::isnan(right[u])) consider(right[u], u - x + static_cast<double>(right_t[u]), v - y);
+        if (!std::isnan(down[u])) consider(down[u], u - x, v - y + static_cast<double>(down_t[u]));
       }
     }
+    const double two_sigma2 = 2.0 * options.weight_sigma_px * options.weight_sigma_px;
+    const std::size_t n = points.size();
+    points.exponent.resize(n);
+    points.weight.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      points.exponent[i] = -(points.dx[i] * points.dx[i] + points.dy[i] * points.dy[i]) / two_sigma2;
+    }
+    cv::hal::exp64f(points.exponent.data(), points.weight.data(), static_cast<int>(n));
   }
 };
 
@@ -182,26 +212,28 @@ void GraySubpixel::refine(CompressedTransport& transport) const {
                         camera_size_, options_};
     // Rows in parallel: each pixel's fit reads the boundaries and writes only its own correspondence.
     cv::parallel_for_(cv::Range(0, camera_size_.height), [&](const cv::Range& rows) {
-      std::vector<BoundaryPoint> points;
+      BoundaryPoints points;
       for (int y = rows.start; y < rows.end; ++y) {
         for (int x = 0; x < width; ++x) {
           const std::size_t c = static_cast<std::size_t>(y) * width + x;
           float& out = transport.correspondence[2 * c + axis];
           if ((transport.flags[c] & kFlagValid) == 0 || std::isnan(out)) continue;
-          out = static_cast<float>(code[c]);  // exact, where the accumulators' centroid may be off by an ulp
-          window.gather(x, y, code[c], points);
-          std::optional<Plane> plane = fit_plane(points, options_);
-          if (!plane) continue;
+          const double own = code[c];
+          out = static_cast<float>(own);  // exact, where the accumulators' centroid may be off by an ulp
+          window.gather(x, y, own, points);
+          Moments all;
+          for (std::size_t i = 0; i < points.size(); ++i) all.add(points, i);
+          const std::optional<Plane> first = all.plane(options_);
+          if (!first) continue;
           // Once more without the points the first plane does not explain.
-          points.erase(std::remove_if(points.begin(), points.end(),
-                                      [&](const BoundaryPoint& p) {
-                                        return std::fabs(plane->at(p.dx, p.dy) - p.value) > options_.max_residual_px;
-                                      }),
-                       points.end());
-          plane = fit_plane(points, options_);
-          if (plane && std::fabs(plane->a - code[c]) <= options_.max_code_offset_px) {
-            out = static_cast<float>(plane->a);
+          Moments explained;
+          for (std::size_t i = 0; i < points.size(); ++i) {
+            if (std::fabs(first->at(points.dx[i], points.dy[i]) - points.value[i]) <= options_.max_residual_px) {
+              explained.add(points, i);
+            }
           }
+          const std::optional<Plane> plane = explained.plane(options_);
+          if (plane && std::fabs(plane->a) <= options_.max_code_offset_px) out = static_cast<float>(own + plane->a);
         }
       }
     });
