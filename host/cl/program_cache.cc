@@ -87,7 +87,15 @@ bool ProgramCache::uses_binary(const DeviceInfo& info) const {
     check_options_match_manifest(board.manifest, options);
     return board.program;
   }
-  return build_source(device, kernel_path, resolve_kernel_source(kernel_path), options);
+  // The embedded source does not change while the process runs: a request seen before skips its resolution and hash.
+  const Request request{device.context()(), std::string(kernel_path) + '\n' + std::string(options)};
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (const auto it = requests_.find(request); it != requests_.end()) return it->second;
+  }
+  ::cl::Program program = build_source(device, kernel_path, resolve_kernel_source(kernel_path), options);
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return requests_.emplace(request, std::move(program)).first->second;
 }
 
 const ProgramCache::BoardProgram& ProgramCache::board_program(DeviceContext& device) {

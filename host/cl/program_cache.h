@@ -105,6 +105,8 @@ class ProgramCache {
   ProgramStore store_;
   mutable std::mutex mutex_;
   std::map<Key, ::cl::Program> programs_;
+  using Request = std::pair<cl_context, std::string>;  // get()'s kernel path and options, one line each
+  std::map<Request, ::cl::Program> requests_;          // get()'s programs built from source, by request
   ProgramBuilds builds_;
   std::mutex board_mutex_;  // held while a board binary loads, so each context loads it once
   std::map<cl_context, BoardProgram> boards_;

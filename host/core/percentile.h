@@ -1,9 +1,17 @@
-// Robust image scales: a percentile of an image's finite values, for previews and detection images.
+// Robust image scales: a value of given rank among an image's finite values (a percentile, a median), selected on
+// every core, for previews, detection images and the depth stage's normalisation.
 #pragma once
+
+#include <cstddef>
+#include <functional>
 
 #include <opencv2/core.hpp>
 
 namespace rfrecon {
+
+// The value of rank rank_of(n) (0-based, below n) among the n finite values of a single-channel CV_32F image: the
+// value std::nth_element would put there. NaN when the image has no finite value.
+float finite_value_of_rank(const cv::Mat& image, const std::function<std::size_t(std::size_t)>& rank_of);
 
 // The value of rank floor(fraction (n - 1)) among the n finite values of a single-channel CV_32F image (nearest
 // rank, no interpolation; fraction in [0, 1]). NaN when the image has no finite value.

@@ -14,32 +14,23 @@ constexpr float kNoValue = std::numeric_limits<float>::quiet_NaN();
 
 bool finite_point(const cv::Vec3f& p) { return std::isfinite(p[0]); }
 
-// The difference of the neighbours of (x, y) along one axis: central where both exist, else one-sided.
-bool difference(const cv::Mat& points, int x, int y, int dx, int dy, cv::Vec3f& out) {
-  const auto at = [&](int xx, int yy, cv::Vec3f& p) {
-    if (xx < 0 || yy < 0 || xx >= points.cols || yy >= points.rows) return false;
-    p = points.at<cv::Vec3f>(yy, xx);
-    return finite_point(p);
-  };
-  cv::Vec3f before, after;
-  const cv::Vec3f centre = points.at<cv::Vec3f>(y, x);
-  const bool has_before = at(x - dx, y - dy, before), has_after = at(x + dx, y + dy, after);
-  if (has_before && has_after) {
-    out = after - before;
-  } else if (has_after) {
-    out = after - centre;
-  } else if (has_before) {
-    out = centre - before;
-  } else {
-    return false;
-  }
+// The ends of a point's tangent along one axis, its neighbours before and after it (null where outside the image):
+// both where finite (a central difference), else the finite one and the point itself. False where neither is.
+// Pointers into the points, so that the difference reads them there, not through copies on the stack.
+bool tangent_ends(const cv::Vec3f*& before, const cv::Vec3f& centre, const cv::Vec3f*& after) {
+  if (before != nullptr && !finite_point(*before)) before = nullptr;
+  if (after != nullptr && !finite_point(*after)) after = nullptr;
+  if (before == nullptr && after == nullptr) return false;
+  if (before == nullptr) before = &centre;
+  if (after == nullptr) after = &centre;
   return true;
 }
 }  // namespace
 
 cv::Mat sample_rectified_depth(const std::vector<float>& z_rect, const RectifiedRows& rows, const cv::Mat& rect_cam,
                                float jump_relative) {
-  // Every pixel written by its row's loop, NaN where there is no depth: no serial fill of the image first.
+  // Every pixel written by the loop (tiles: the rectification turns the image), NaN where there is no depth: no serial
+  // fill of the image first.
   cv::Mat z_grid(rect_cam.size(), CV_32F);
   const auto z_at = [&](int u, int v) { return z_rect[static_cast<std::size_t>(v) * rows.width + u]; };
   const auto depth_at = [&](const cv::Vec2f& position) {
@@ -56,9 +47,8 @@ cv::Mat sample_rectified_depth(const std::vector<float>& z_rect, const Rectified
     const float top = (1.0f - tu) / z[0] + tu / z[1], bottom = (1.0f - tu) / z[2] + tu / z[3];
     return 1.0f / ((1.0f - tv) * top + tv * bottom);
   };
-  for_each_row(rect_cam.rows, [&](int y) {
-    for (int x = 0; x < rect_cam.cols; ++x) z_grid.at<float>(y, x) = depth_at(rect_cam.at<cv::Vec2f>(y, x));
-  });
+  for_each_pixel_in_tiles(rect_cam.rows, rect_cam.cols,
+                          [&](int y, int x) { z_grid.at<float>(y, x) = depth_at(rect_cam.at<cv::Vec2f>(y, x)); });
   return z_grid;
 }
 
@@ -70,7 +60,7 @@ outputs::Reconstruction camera_frame_maps(const cv::Mat& z_rect_mm, const cv::Ma
   maps.depth_mm = cv::Mat(size, CV_32F);
   maps.points_mm = cv::Mat(size, CV_32FC3);
   maps.normals = cv::Mat(size, CV_32FC3);
-  maps.confidence = cv::Mat(size, CV_32F, cv::Scalar(0.0f));
+  maps.confidence = filled_on_every_core(size, CV_32F, cv::Scalar(0.0f));
   const cv::Vec3f no_point(kNoValue, kNoValue, kNoValue);
   cv::Matx33d cam_from_rect;
   cv::Mat(R1.t()).copyTo(cam_from_rect);
@@ -88,20 +78,23 @@ outputs::Reconstruction camera_frame_maps(const cv::Mat& z_rect_mm, const cv::Ma
     }
   });
   for_each_row(size.height, [&](int y) {
+    const cv::Vec3f* row = maps.points_mm.ptr<cv::Vec3f>(y);
+    const cv::Vec3f* above = y > 0 ? maps.points_mm.ptr<cv::Vec3f>(y - 1) : nullptr;
+    const cv::Vec3f* below = y + 1 < size.height ? maps.points_mm.ptr<cv::Vec3f>(y + 1) : nullptr;
+    cv::Vec3f* normals = maps.normals.ptr<cv::Vec3f>(y);
     for (int x = 0; x < size.width; ++x) {
-      const cv::Vec3f point = maps.points_mm.at<cv::Vec3f>(y, x);
-      maps.normals.at<cv::Vec3f>(y, x) = no_point;
-      cv::Vec3f along_x, along_y;
-      if (!finite_point(point) || !difference(maps.points_mm, x, y, 1, 0, along_x) ||
-          !difference(maps.points_mm, x, y, 0, 1, along_y)) {
-        continue;
-      }
-      cv::Vec3f normal = along_x.cross(along_y);
+      const cv::Vec3f& point = row[x];
+      normals[x] = no_point;
+      if (!finite_point(point)) continue;
+      const cv::Vec3f *left = x > 0 ? row + x - 1 : nullptr, *right = x + 1 < size.width ? row + x + 1 : nullptr;
+      const cv::Vec3f *up = above != nullptr ? above + x : nullptr, *down = below != nullptr ? below + x : nullptr;
+      if (!tangent_ends(left, point, right) || !tangent_ends(up, point, down)) continue;
+      cv::Vec3f normal = (*right - *left).cross(*down - *up);
       const float length = static_cast<float>(cv::norm(normal));
       if (!(length > 0.0f)) continue;
       normal /= length;
       if (normal.dot(point) > 0.0f) normal = -normal;  // face the camera at the origin
-      maps.normals.at<cv::Vec3f>(y, x) = normal;
+      normals[x] = normal;
     }
   });
   return maps;

@@ -4,8 +4,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <iterator>
+#include <cstdint>
 #include <limits>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include "host/core/errors.h"
 #include "host/core/image_file.h"
 #include "host/core/parallel_rows.h"
+#include "host/core/percentile.h"
 #include "host/depth/bilinear.h"
 #include "host/depth/solid_angle.h"
 
@@ -160,9 +162,16 @@ Rectification depth_rectification(const calib::StereoRig& rig, const std::string
 std::vector<cv::Point2f> rectify_projector_points(const std::vector<cv::Point2f>& points, const calib::StereoRig& rig,
                                                   const Rectification& rectification) {
   std::vector<cv::Point2f> rectified(points.size());
+  std::vector<std::uint8_t> on_grid(points.size());
+  cv::parallel_for_(cv::Range(0, static_cast<int>(points.size())), [&](const cv::Range& range) {
+    for (int i = range.start; i < range.end; ++i) {
+      const auto at = static_cast<std::size_t>(i);
+      on_grid[at] = interpolate_grid(rectification.proj_grid, points[at], rectified[at]) ? 1 : 0;
+    }
+  });
   std::vector<std::size_t> off_grid;  // points outside the grid, undistorted one by one
   for (std::size_t i = 0; i < points.size(); ++i) {
-    if (!interpolate_grid(rectification.proj_grid, points[i], rectified[i])) off_grid.push_back(i);
+    if (on_grid[i] == 0) off_grid.push_back(i);
   }
   if (!off_grid.empty()) {
     std::vector<cv::Point2f> exact;
@@ -187,22 +196,32 @@ CameraGridTriangulation triangulate_camera_grid(const transport::CompressedTrans
   }
   const RfRectifiedRig& rectified = rectification.rig;
   CameraGridTriangulation result;
-  std::vector<cv::Point2f> correspondences;
-  std::vector<int> with_correspondence;
-  correspondences.reserve(transport.camera_pixels());
-  with_correspondence.reserve(transport.camera_pixels());
-  for (int c = 0; c < camera_size.area(); ++c) {
-    const float x_p = transport.correspondence[2 * static_cast<std::size_t>(c)];
-    if (!std::isnan(x_p)) {
-      correspondences.emplace_back(x_p, transport.correspondence[2 * static_cast<std::size_t>(c) + 1]);
-      with_correspondence.push_back(c);
+  // The pixels with a correspondence, in pixel order, gathered on every core: counted per row, then each row's
+  // written from its offset.
+  const auto x_of = [](int c) { return 2 * static_cast<std::size_t>(c); };  // in transport.correspondence
+  const auto has_correspondence = [&](int c) { return !std::isnan(transport.correspondence[x_of(c)]); };
+  std::vector<int> row_start(static_cast<std::size_t>(camera_size.height) + 1, 0);
+  for_each_row(camera_size.height, [&](int y) {
+    int count = 0;
+    for (int c = y * camera_size.width; c < (y + 1) * camera_size.width; ++c) count += has_correspondence(c) ? 1 : 0;
+    row_start[static_cast<std::size_t>(y) + 1] = count;
+  });
+  std::partial_sum(row_start.begin(), row_start.end(), row_start.begin());
+  std::vector<cv::Point2f> correspondences(static_cast<std::size_t>(row_start.back()));
+  std::vector<int> with_correspondence(correspondences.size());
+  for_each_row(camera_size.height, [&](int y) {
+    auto at = static_cast<std::size_t>(row_start[static_cast<std::size_t>(y)]);
+    for (int c = y * camera_size.width; c < (y + 1) * camera_size.width; ++c) {
+      if (!has_correspondence(c)) continue;
+      correspondences[at] = {transport.correspondence[x_of(c)], transport.correspondence[x_of(c) + 1]};
+      with_correspondence[at++] = c;
     }
-  }
+  });
   const std::vector<cv::Point2f> rect_proj = rectify_projector_points(correspondences, rig, rectification);
   result.rect_cam = rectification.rect_cam;
-  result.rect_proj_u = cv::Mat(camera_size, CV_32F, cv::Scalar(kNaN));
-  result.z_rect_mm = cv::Mat(camera_size, CV_32F, cv::Scalar(kNaN));
-  result.epipolar_px = cv::Mat(camera_size, CV_32F, cv::Scalar(kNaN));
+  result.rect_proj_u = filled_on_every_core(camera_size, CV_32F, cv::Scalar(kNaN));
+  result.z_rect_mm = filled_on_every_core(camera_size, CV_32F, cv::Scalar(kNaN));
+  result.epipolar_px = filled_on_every_core(camera_size, CV_32F, cv::Scalar(kNaN));
   result.correspondences = static_cast<int>(with_correspondence.size());
   std::atomic<int> off_epipolar{0};
   cv::parallel_for_(cv::Range(0, result.correspondences), [&](const cv::Range& range) {
@@ -243,7 +262,7 @@ RectifiedRows rectify_rows(const transport::CompressedTransport& transport, cons
   }
   // Radiance-like images: primal and dual divided by their pixels' solid angles. Camera pixels that cannot carry the
   // ODE (no correspondence, saturated, dark) become NaN so that no interpolated value mixes them in.
-  cv::Mat e_cam(camera_size, CV_32F, cv::Scalar(kNaN)), e_proj;
+  cv::Mat e_cam = filled_on_every_core(camera_size, CV_32F, cv::Scalar(kNaN)), e_proj;
   const int k = transport.k();
   for_each_row(camera_size.height, [&](int y) {
     for (int x = 0; x < camera_size.width; ++x) {
@@ -256,14 +275,10 @@ RectifiedRows rectify_rows(const transport::CompressedTransport& transport, cons
   });
   cv::divide(cv::max(cv::Mat(projector_size, CV_32F, const_cast<float*>(dual.data())), 0.0f), rectification.omega_proj,
              e_proj);
-  std::vector<float> usable;
-  usable.reserve(transport.camera_pixels());
-  const float* e_all = e_cam.ptr<float>();  // continuous
-  std::copy_if(e_all, e_all + e_cam.total(), std::back_inserter(usable), [](float e) { return !std::isnan(e); });
-  // A common factor cancels in the ODE: scale both so that the camera's median is 1.
-  if (!usable.empty()) {
-    std::nth_element(usable.begin(), usable.begin() + static_cast<std::ptrdiff_t>(usable.size() / 2), usable.end());
-    const float scale = 1.0f / usable[usable.size() / 2];
+  // A common factor cancels in the ODE: scale both so that the camera's median (rank n / 2 of n) is 1.
+  const float median = finite_value_of_rank(e_cam, [](std::size_t usable) { return usable / 2; });
+  if (!std::isnan(median)) {
+    const float scale = 1.0f / median;
     e_cam *= scale;
     e_proj *= scale;
   }
@@ -278,27 +293,23 @@ RectifiedRows rectify_rows(const transport::CompressedTransport& transport, cons
   rows.z_tri.assign(rows.pixels(), kNaN);
   rows.e_proj.assign(static_cast<std::size_t>(rows.height) * static_cast<std::size_t>(rows.proj_width), 0.0f);
   rows.runs.assign(rows.pixels(), 0);
-  // Rows on every core: each writes only its own samples.
-  cv::parallel_for_(cv::Range(0, rows.height), [&](const cv::Range& range) {
-    for (int v = range.start; v < range.end; ++v) {
-      for (int u = 0; u < rows.width; ++u) {
-        const std::size_t i = static_cast<std::size_t>(v) * static_cast<std::size_t>(rows.width) + u;
-        const float x = rectification.cam_map_x.at<float>(v, u), y = rectification.cam_map_y.at<float>(v, u);
-        const float u_proj = sample_bilinear(triangulation.rect_proj_u, x, y);
-        const float e = sample_bilinear(e_cam, x, y);
-        const float disparity = (static_cast<float>(u) - rectified.cx_cam) - (u_proj - rectified.cx_proj);
-        const float z = rectified.f * rectified.b / disparity;
-        if (z > 0.0f && e > 0.0f) {  // false for NaN
-          rows.z_tri[i] = z;
-          rows.e_cam[i] = e;
-        }
-      }
-      for (int u = 0; u < rows.proj_width; ++u) {
-        const float e_p =
-            sample_bilinear(e_proj, rectification.proj_map_x.at<float>(v, u), rectification.proj_map_y.at<float>(v, u));
-        if (e_p > 0.0f) rows.e_proj[static_cast<std::size_t>(v) * static_cast<std::size_t>(rows.proj_width) + u] = e_p;
-      }
+  // Each sample written by its own pixel, in tiles on every core (the rectification turns the images).
+  for_each_pixel_in_tiles(rows.height, rows.width, [&](int v, int u) {
+    const std::size_t i = static_cast<std::size_t>(v) * static_cast<std::size_t>(rows.width) + u;
+    const float x = rectification.cam_map_x.at<float>(v, u), y = rectification.cam_map_y.at<float>(v, u);
+    const float u_proj = sample_bilinear(triangulation.rect_proj_u, x, y);
+    const float e = sample_bilinear(e_cam, x, y);
+    const float disparity = (static_cast<float>(u) - rectified.cx_cam) - (u_proj - rectified.cx_proj);
+    const float z = rectified.f * rectified.b / disparity;
+    if (z > 0.0f && e > 0.0f) {  // false for NaN
+      rows.z_tri[i] = z;
+      rows.e_cam[i] = e;
     }
+  });
+  for_each_pixel_in_tiles(rows.height, rows.proj_width, [&](int v, int u) {
+    const float e_p =
+        sample_bilinear(e_proj, rectification.proj_map_x.at<float>(v, u), rectification.proj_map_y.at<float>(v, u));
+    if (e_p > 0.0f) rows.e_proj[static_cast<std::size_t>(v) * static_cast<std::size_t>(rows.proj_width) + u] = e_p;
   });
   return rows;
 }
