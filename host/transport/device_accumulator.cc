@@ -171,19 +171,26 @@ class DeviceAccumulator final : public TransportAccumulator {
     pairs_.fill(0);
   }
 
-  // T's empty rows, made and shared with the kernels once.
-  void share_rows() {
+  // T's rows, shared with the kernels once: empty, or with `kernel_empties` only sized (the NDRange entry's first
+  // batch writes every row).
+  void share_rows(bool kernel_empties = false) {
     if (indices_() != nullptr) return;
-    add_empty_rows(state_);
+    if (kernel_empties) {
+      size_rows(state_);
+    } else {
+      add_empty_rows(state_);
+    }
     indices_ = cl::share(device_.context(), state_.indices);
     weights_ = cl::share(device_.context(), state_.weights);
   }
 
   // One launch over the pending frames; offsets of unused batch slots stay 0 (the kernel skips those frames).
   void compress_batch() {
-    share_rows();
+    const bool fresh = entry_ == KernelEntry::kNdRange && indices_() == nullptr;
+    share_rows(fresh);
     const ::cl::Buffer offsets = cl::upload(device_.context(), offsets_.data(), offsets_.size());
-    const cl_uint next = set_frame_arguments(dot_frames_, pending_);
+    cl_uint next = set_frame_arguments(dot_frames_, pending_);
+    if (entry_ == KernelEntry::kNdRange) cl::set_args_from(dot_frames_, next++, static_cast<cl_int>(fresh));
     cl::set_args_from(dot_frames_, next, static_cast<cl_int>(pending_), offsets, setup_.dot_spacing,
                       setup_.projector_size.width, setup_.projector_size.height, setup_.thresholds.noise, black_,
                       flags_, gray_x_, gray_y_, indices_, weights_, energy_, count());

@@ -33,6 +33,11 @@ void add_empty_rows(CompressedTransport& transport) {
   assign_on_huge_pages(transport.weights, slots, 0.0f);
 }
 
+void size_rows(CompressedTransport& transport) {
+  const std::size_t slots = transport.camera_pixels() * static_cast<std::size_t>(transport.k());
+  if (transport.indices.size() != slots || transport.weights.size() != slots) add_empty_rows(transport);
+}
+
 CompressedTransport make_empty_transport(const TransportSetup& setup, CompressedTransport storage) {
   CompressedTransport transport = make_empty_decoding(setup, std::move(storage));
   add_empty_rows(transport);

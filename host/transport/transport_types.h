@@ -102,8 +102,12 @@ CompressedTransport make_empty_transport(const TransportSetup& setup, Compressed
 
 // The same without T's rows: the decoding's state, which add_empty_rows completes when the compression needs them,
 // so that decoding does not pay for the rows' memory (N * K entries). Rows of `storage` of that size already are
-// kept as they are (stale) for add_empty_rows to refill on every core; others are dropped, their memory kept.
+// kept as they are (stale) for add_empty_rows to refill on every core, or for a kernel to overwrite (size_rows);
+// others are dropped, their memory kept.
 CompressedTransport make_empty_decoding(const TransportSetup& setup, CompressedTransport storage = {});
 void add_empty_rows(CompressedTransport& transport);
+// The rows at their size, their contents left as they are when they have it already (stale rows of `storage`, for a
+// kernel that writes every row), otherwise made empty.
+void size_rows(CompressedTransport& transport);
 
 }  // namespace rfrecon::transport

@@ -3,7 +3,8 @@
 // computes the sub-pixel correspondence. The NDRange entry takes the batch's frames as RF_FRAME_BATCH buffers
 // (common/frame_batch.h: RF_SAMPLE, made linear with sample_black and sample_scale), the single work-item entry in one
 // of linear floats (`frames`, frame f at f * n, as an FPGA board's DDR holds them). `offsets`: RF_FRAME_BATCH (x, y)
-// dot offsets (unused ones 0).
+// dot offsets (unused ones 0). The NDRange entry's `fresh` batch (the first) writes every row, empty where no frame
+// reached it; the single work-item entry's rows come filled from the host.
 #include "common/target.h"
 
 // Exact agreement with the C++ reference: no fused multiply-add contraction.
@@ -11,12 +12,13 @@
 #include "common/frame_batch.h"
 #include "transport/compression.h"
 
-__kernel void dot_frames_ndrange(RF_FRAME_PARAMETERS, float sample_black, float sample_scale, int frame_count,
-                                 __global const int* restrict offsets, int spacing, int projector_width,
-                                 int projector_height, float noise_threshold, __global const float* restrict black,
-                                 __global const uchar* restrict flags, __global const uint* restrict projector_x,
-                                 __global const uint* restrict projector_y, __global int* restrict indices,
-                                 __global float* restrict weights, __global float* restrict energy, uint n) {
+__kernel void dot_frames_ndrange(RF_FRAME_PARAMETERS, float sample_black, float sample_scale, int fresh,
+                                 int frame_count, __global const int* restrict offsets, int spacing,
+                                 int projector_width, int projector_height, float noise_threshold,
+                                 __global const float* restrict black, __global const uchar* restrict flags,
+                                 __global const uint* restrict projector_x, __global const uint* restrict projector_y,
+                                 __global int* restrict indices, __global float* restrict weights,
+                                 __global float* restrict energy, uint n) {
   // Work-item i: pixels i RF_LANES .. (i + 1) RF_LANES - 1, in vector lanes; the last one's tail pixel by pixel.
   const uint c0 = get_global_id(0) * RF_LANES;
   if (c0 >= n) return;
@@ -27,11 +29,12 @@ __kernel void dot_frames_ndrange(RF_FRAME_PARAMETERS, float sample_black, float 
   rf_load_dot_offsets(offsets, offsets_x, offsets_y);
   const RfDotGrid grid = {spacing, projector_width, projector_height, noise_threshold};
   if (c0 + RF_LANES <= n) {
-    rf_dot_frames_lanes(c0, frame_count, offsets_x, offsets_y, grid, frames, map, black, flags, projector_x,
+    rf_dot_frames_lanes(c0, fresh, frame_count, offsets_x, offsets_y, grid, frames, map, black, flags, projector_x,
                         projector_y, indices, weights, energy);
     return;
   }
   for (uint c = c0; c < n; ++c) {
+    if (fresh) rf_empty_row(c, indices, weights);
     float sample[RF_FRAME_BATCH];
     for (int f = 0; f < RF_FRAME_BATCH; ++f) sample[f] = f < frame_count ? rf_linear_sample(frames[f], c, map) : 0.0f;
     rf_dot_samples_pixel(c, sample, frame_count, offsets_x, offsets_y, grid, black, flags, projector_x, projector_y,

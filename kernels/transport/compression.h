@@ -77,6 +77,15 @@ typedef struct {  // NOLINT(modernize-use-using): shared with OpenCL C, which ha
   float noise_threshold;
 } RfDotGrid;
 
+// Pixel c's row emptied: index -1, weight 0 in every slot.
+RF_INLINE void rf_empty_row(unsigned c, RF_GLOBAL int* indices, RF_GLOBAL float* weights) {
+  RF_UNROLL
+  for (int k = 0; k < RF_K; ++k) {
+    indices[(size_t)c * RF_K + k] = -1;
+    weights[(size_t)c * RF_K + k] = 0.0f;
+  }
+}
+
 // Pixel c's ELL row and energy updated with the batch's contributions, in the batch's order: frame f lit projector
 // pixel dot[f] (-1: none) with value[f].
 RF_INLINE void rf_dot_update_row(unsigned c, const float* value, const int* dot, RF_GLOBAL int* indices,
@@ -167,17 +176,66 @@ RF_INLINE void rf_insert_entry_lanes(int8 lit, int8 q, float8 v, int8* index, fl
   index[0] = select(index[0], q, beats);
 }
 
+// The rows of pixels c0 .. c0 + RF_LANES - 1 into lanes, slot k of every row in index[k] and weight[k]. (Reading the
+// rows' block as vectors and transposing it with shuffles was no faster on PoCL.)
+RF_INLINE void rf_load_rows_lanes(unsigned c0, __global const int* indices, __global const float* weights, int8* index,
+                                  float8* weight) {
+  __global const int* row_index = indices + (size_t)c0 * RF_K;
+  __global const float* row_weight = weights + (size_t)c0 * RF_K;
+#pragma unroll
+  for (int k = 0; k < RF_K; ++k) {
+    index[k] =
+        (int8)(row_index[k], row_index[RF_K + k], row_index[2 * RF_K + k], row_index[3 * RF_K + k],
+               row_index[4 * RF_K + k], row_index[5 * RF_K + k], row_index[6 * RF_K + k], row_index[7 * RF_K + k]);
+    weight[k] = (float8)(row_weight[k], row_weight[RF_K + k], row_weight[2 * RF_K + k], row_weight[3 * RF_K + k],
+                         row_weight[4 * RF_K + k], row_weight[5 * RF_K + k], row_weight[6 * RF_K + k],
+                         row_weight[7 * RF_K + k]);
+  }
+}
+
+// The inverse of rf_load_rows_lanes: the lanes written back as rows.
+RF_INLINE void rf_store_rows_lanes(unsigned c0, const int8* index, const float8* weight, __global int* indices,
+                                   __global float* weights) {
+  __global int* row_index = indices + (size_t)c0 * RF_K;
+  __global float* row_weight = weights + (size_t)c0 * RF_K;
+#pragma unroll
+  for (int k = 0; k < RF_K; ++k) {
+    int slot_index[RF_LANES];
+    float slot_weight[RF_LANES];
+    vstore8(index[k], 0, slot_index);
+    vstore8(weight[k], 0, slot_weight);
+#pragma unroll
+    for (int l = 0; l < RF_LANES; ++l) {
+      row_index[l * RF_K + k] = slot_index[l];
+      row_weight[l * RF_K + k] = slot_weight[l];
+    }
+  }
+}
+
+// Empty rows (index -1, weight 0) for pixels c0 .. c0 + RF_LANES - 1: RF_LANES RF_K entries in a row, RF_K vectors.
+RF_INLINE void rf_store_empty_rows_lanes(unsigned c0, __global int* indices, __global float* weights) {
+#pragma unroll
+  for (int k = 0; k < RF_K; ++k) {
+    vstore8((int8)(-1), k, indices + (size_t)c0 * RF_K);
+    vstore8((float8)(0.0f), k, weights + (size_t)c0 * RF_K);
+  }
+}
+
 // The RF_LANES pixels c0 .. c0 + RF_LANES - 1 at once, one per vector lane, frame f of the batch at frames[f] (samples
 // made linear with `map`). The noise test first, on every frame: a group that no frame lifts above the noise (most
 // groups in most batches) stops there. Then the window arithmetic and the insertion, in lanes, for the frames that
-// lift some lane; the rows are gathered into lanes (slot k of every row in one vector) and written back.
-RF_INLINE void rf_dot_frames_lanes(unsigned c0, int frame_count, const int* offsets_x, const int* offsets_y,
+// lift some lane; the rows are gathered into lanes (slot k of every row in one vector) and written back. With `fresh`
+// (the capture's first batch) the rows start empty instead of being read, and every group writes its rows.
+RF_INLINE void rf_dot_frames_lanes(unsigned c0, int fresh, int frame_count, const int* offsets_x, const int* offsets_y,
                                    RfDotGrid grid, __global const RF_SAMPLE* const* frames, RfSampleMap map,
                                    __global const float* black, __global const uchar* flags,
                                    __global const uint* projector_x, __global const uint* projector_y,
                                    __global int* indices, __global float* weights, __global float* energy) {
   const int8 compressible = RF_COMPRESSIBLE(convert_uint8(vload8(0, flags + c0)));
-  if (!any(compressible)) return;  // pixels the projector does not light read no frame
+  if (!any(compressible)) {  // pixels the projector does not light read no frame
+    if (fresh) rf_store_empty_rows_lanes(c0, indices, weights);
+    return;
+  }
   const float8 dark = vload8(0, black + c0);
   // Every frame's samples loaded before the first is used, so that their cache misses overlap (the loads stalled
   // one by one, docs/performance.md); unused frame buffers repeat frame 0, so every load is in bounds.
@@ -193,24 +251,25 @@ RF_INLINE void rf_dot_frames_lanes(unsigned c0, int frame_count, const int* offs
     above[f] = (f < frame_count ? compressible : 0) & (value[f] > grid.noise_threshold);
     any_above |= above[f];
   }
-  if (!any(any_above)) return;
+  if (!any(any_above)) {
+    if (fresh) rf_store_empty_rows_lanes(c0, indices, weights);
+    return;
+  }
   const int s = grid.spacing;
   const int8 x0 = RF_LANES_FN(rf_window_start)(convert_int8(vload8(0, projector_x + c0)), s);
   const int8 y0 = RF_LANES_FN(rf_window_start)(convert_int8(vload8(0, projector_y + c0)), s);
   const int8 ax = RF_LANES_FN(rf_window_residue)(x0, s);
   const int8 ay = RF_LANES_FN(rf_window_residue)(y0, s);
-  __global int* row_index = indices + (size_t)c0 * RF_K;
-  __global float* row_weight = weights + (size_t)c0 * RF_K;
   int8 index[RF_K];
   float8 weight[RF_K];
+  if (fresh) {
 #pragma unroll
-  for (int k = 0; k < RF_K; ++k) {
-    index[k] =
-        (int8)(row_index[k], row_index[RF_K + k], row_index[2 * RF_K + k], row_index[3 * RF_K + k],
-               row_index[4 * RF_K + k], row_index[5 * RF_K + k], row_index[6 * RF_K + k], row_index[7 * RF_K + k]);
-    weight[k] = (float8)(row_weight[k], row_weight[RF_K + k], row_weight[2 * RF_K + k], row_weight[3 * RF_K + k],
-                         row_weight[4 * RF_K + k], row_weight[5 * RF_K + k], row_weight[6 * RF_K + k],
-                         row_weight[7 * RF_K + k]);
+    for (int k = 0; k < RF_K; ++k) {
+      index[k] = (int8)(-1);
+      weight[k] = (float8)(0.0f);
+    }
+  } else {
+    rf_load_rows_lanes(c0, indices, weights, index, weight);
   }
   float8 e = vload8(0, energy + c0);
 #pragma unroll
@@ -223,18 +282,7 @@ RF_INLINE void rf_dot_frames_lanes(unsigned c0, int frame_count, const int* offs
     rf_insert_entry_lanes(lit, qy * grid.projector_width + qx, value[f], index, weight);
   }
   vstore8(e, 0, energy + c0);
-#pragma unroll
-  for (int k = 0; k < RF_K; ++k) {
-    int slot_index[RF_LANES];
-    float slot_weight[RF_LANES];
-    vstore8(index[k], 0, slot_index);
-    vstore8(weight[k], 0, slot_weight);
-#pragma unroll
-    for (int l = 0; l < RF_LANES; ++l) {
-      row_index[l * RF_K + k] = slot_index[l];
-      row_weight[l * RF_K + k] = slot_weight[l];
-    }
-  }
+  rf_store_rows_lanes(c0, index, weight, indices, weights);
 }
 #endif
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <utility>
 
 #include <gtest/gtest.h>
@@ -13,6 +14,7 @@
 #include "host/capture/protocol.h"
 #include "host/cl/device_selection.h"
 #include "host/transport/compute_transport.h"
+#include "kernels/common/params.h"
 #include "tests/common/devices.h"
 #include "tests/transport/same_transport.h"
 #include "tests/transport/synthetic_capture.h"
@@ -87,7 +89,8 @@ TEST(TransportDevicesTest, SingleWorkItemDeviceAndNdRangeDeviceGiveTheOneDeviceT
 
 // A scanner's loop hands each scan the transport of the one before: the result lies in that memory (one block's
 // accumulator state on one device; the stacked blocks on two, in transport_two_pocl_devices) and equals the one
-// computed in new memory, whatever the earlier transport held; a too small one grows.
+// computed in new memory, whatever the earlier transport held (the NDRange kernels' first batch overwrites every
+// row, at the parameters' K and at another); a too small one grows.
 TEST(TransportDevicesTest, AnEarlierTransportsMemoryIsReusedAndTheResultIsTheSame) {
   auto devices = cl::open_devices("all");
   devices.erase(devices.begin() + std::min<std::ptrdiff_t>(2, static_cast<std::ptrdiff_t>(devices.size())),
@@ -95,38 +98,43 @@ TEST(TransportDevicesTest, AnEarlierTransportsMemoryIsReusedAndTheResultIsTheSam
   testing::TempDir dir("transport_storage");
   write_plane_capture(dir.path());
   cl::ProgramCache programs;
-  const auto run = [&](CompressedTransport storage) {
-    return compute_transport_on_devices(dir.path(), capture::read_manifest(dir.path()), setup_with_k4(), devices,
-                                        programs, {}, kDefaultReaders, std::move(storage))
-        .transport;
-  };
-  const CompressedTransport expected = run({});
-  ASSERT_GT(std::count(expected.indices.begin(), expected.indices.end(), -1), 0)
-      << "the test needs empty slots, to show that the earlier transport's entries are gone";
+  for (const int k : {RF_K, 4}) {
+    SCOPED_TRACE("K = " + std::to_string(k));
+    TransportSetup setup;
+    setup.entries_per_pixel = k;
+    const auto run = [&](CompressedTransport storage) {
+      return compute_transport_on_devices(dir.path(), capture::read_manifest(dir.path()), setup, devices, programs, {},
+                                          kDefaultReaders, std::move(storage))
+          .transport;
+    };
+    const CompressedTransport expected = run({});
+    ASSERT_GT(std::count(expected.indices.begin(), expected.indices.end(), -1), 0)
+        << "the test needs empty slots, to show that the earlier transport's entries are gone";
 
-  CompressedTransport earlier = expected;  // the same sizes, other contents
-  std::fill(earlier.indices.begin(), earlier.indices.end(), 7);
-  std::fill(earlier.weights.begin(), earlier.weights.end(), 0.5f);
-  std::fill(earlier.correspondence.begin(), earlier.correspondence.end(), 3.0f);
-  std::fill(earlier.gray_x.begin(), earlier.gray_x.end(), 5U);
-  std::fill(earlier.gray_y.begin(), earlier.gray_y.end(), 6U);
-  std::fill(earlier.flags.begin(), earlier.flags.end(), std::uint8_t{0xFF});
-  std::fill(earlier.direct_energy.begin(), earlier.direct_energy.end(), 9.0f);
-  const std::int32_t* indices_memory = earlier.indices.data();
-  const float* weights_memory = earlier.weights.data();
-  const float* correspondence_memory = earlier.correspondence.data();
-  const std::uint8_t* flags_memory = earlier.flags.data();
-  const CompressedTransport got = run(std::move(earlier));
-  expect_same_transport(got, expected);
-  EXPECT_EQ(got.indices.data(), indices_memory);
-  EXPECT_EQ(got.weights.data(), weights_memory);
-  EXPECT_EQ(got.correspondence.data(), correspondence_memory);
-  EXPECT_EQ(got.flags.data(), flags_memory);
+    CompressedTransport earlier = expected;  // the same sizes, other contents
+    std::fill(earlier.indices.begin(), earlier.indices.end(), 7);
+    std::fill(earlier.weights.begin(), earlier.weights.end(), 0.5f);
+    std::fill(earlier.correspondence.begin(), earlier.correspondence.end(), 3.0f);
+    std::fill(earlier.gray_x.begin(), earlier.gray_x.end(), 5U);
+    std::fill(earlier.gray_y.begin(), earlier.gray_y.end(), 6U);
+    std::fill(earlier.flags.begin(), earlier.flags.end(), std::uint8_t{0xFF});
+    std::fill(earlier.direct_energy.begin(), earlier.direct_energy.end(), 9.0f);
+    const std::int32_t* indices_memory = earlier.indices.data();
+    const float* weights_memory = earlier.weights.data();
+    const float* correspondence_memory = earlier.correspondence.data();
+    const std::uint8_t* flags_memory = earlier.flags.data();
+    const CompressedTransport got = run(std::move(earlier));
+    expect_same_transport(got, expected);
+    EXPECT_EQ(got.indices.data(), indices_memory);
+    EXPECT_EQ(got.weights.data(), weights_memory);
+    EXPECT_EQ(got.correspondence.data(), correspondence_memory);
+    EXPECT_EQ(got.flags.data(), flags_memory);
 
-  CompressedTransport small;
-  small.indices.assign(10, 7);
-  small.flags.assign(3, std::uint8_t{0xFF});
-  expect_same_transport(run(std::move(small)), expected);
+    CompressedTransport small;
+    small.indices.assign(10, 7);
+    small.flags.assign(3, std::uint8_t{0xFF});
+    expect_same_transport(run(std::move(small)), expected);
+  }
 }
 
 }  // namespace
