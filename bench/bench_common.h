@@ -1,5 +1,5 @@
-// Helpers shared by the benchmarks: the machine's memory-bandwidth roofline, throughput counters against it, and a
-// reporter that keeps the figures main() needs for ratios measured in the same run.
+// Helpers shared by the benchmarks: the machine's memory-bandwidth rooflines (streaming and read-only), throughput
+// counters against it, and a reporter that keeps the figures main() needs for ratios measured in the same run.
 #pragma once
 
 #include <map>
@@ -14,6 +14,11 @@ namespace rfrecon::bench {
 // arrays, write one in place, so no write-allocate traffic; 256 MiB each, beyond the last-level cache) in plain C++
 // on every hardware thread, as PoCL uses them all.
 double host_stream_bytes_per_second();
+
+// Host read-only bandwidth in bytes/s, measured once per process the same way: best of five passes summing two
+// 256 MiB integer arrays, nothing written. The ceiling of a stage that mostly reads, such as the compression of the
+// dot frames; on a machine whose reads alone move less than the streaming pass, it is the lower of the two.
+double host_read_bytes_per_second();
 
 // Sets "GB/s" and "roofline_fraction" (achieved bandwidth / host_stream_bytes_per_second()) for `bytes_per_iteration`
 // bytes moved each iteration. Call after the timing loop.
