@@ -46,6 +46,9 @@ struct CalibrationOptions {
   // Dense correspondences per pose (calib/dense_correspondences.h) added to the joint adjustment of a stereo
   // calibration; 0 adjusts the corners alone.
   int dense_points = 2000;
+  // Robust gating of a stereo calibration's corners and poses (calib/residual_gating.h); false keeps every
+  // observation at weight 1.
+  bool gating = true;
   double min_tilt_spread_deg = 5.0;  // the board normals must span at least this angle (else focal is unobservable)
 };
 

@@ -69,11 +69,15 @@ std::vector<cv::Point2d> JointProblem::dense_rays(const std::vector<double>& p, 
 }
 
 void JointProblem::view_residuals(const std::vector<double>& p, int view, std::vector<double>& out) const {
-  view_residuals(p, view, dense_rays(p, view), out);
+  view_residuals(p, view, dense_rays(p, view), true, out);
+}
+
+void JointProblem::view_errors(const std::vector<double>& p, int view, std::vector<double>& out) const {
+  view_residuals(p, view, dense_rays(p, view), false, out);
 }
 
 void JointProblem::view_residuals(const std::vector<double>& p, int view, const std::vector<cv::Point2d>& rays,
-                                  std::vector<double>& out) const {
+                                  bool weighted, std::vector<double>& out) const {
   const int pose = layout_.pose(view);
   const cv::Vec3d rvec(p[pose], p[pose + 1], p[pose + 2]);
   const cv::Vec3d tvec(p[pose + 3], p[pose + 4], p[pose + 5]);
@@ -91,14 +95,16 @@ void JointProblem::view_residuals(const std::vector<double>& p, int view, const 
   cv::projectPoints(object_points_[view], proj_rvec, proj_tvec, projector_matrix, projector_dist, projector_px);
   const StereoCorners& observed = corners_[view];
   out.clear();
-  const auto append = [&](const std::vector<cv::Point2d>& predicted, const std::vector<cv::Point2f>& measured) {
+  const auto append = [&](const std::vector<cv::Point2d>& predicted, const std::vector<cv::Point2f>& measured,
+                          const ObservationWeights& weights) {
     for (std::size_t i = 0; i < predicted.size(); ++i) {
-      out.push_back(predicted[i].x - measured[i].x);
-      out.push_back(predicted[i].y - measured[i].y);
+      const double factor = weighted ? std::sqrt(weights.of(i)) : 1.0;
+      out.push_back(factor * (predicted[i].x - measured[i].x));
+      out.push_back(factor * (predicted[i].y - measured[i].y));
     }
   };
-  append(camera_px, observed.camera);
-  append(projector_px, observed.projector);
+  append(camera_px, observed.camera, observed.camera_weights);
+  append(projector_px, observed.projector, observed.projector_weights);
   if (observed.dense_camera.empty()) return;
 
   // Each dense camera pixel's ray meets the board's plane z = 0 at a board point, which the projector sees like a
@@ -114,7 +120,7 @@ void JointProblem::view_residuals(const std::vector<double>& p, int view, const 
   }
   std::vector<cv::Point2d> dense_px;
   cv::projectPoints(board_points, proj_rvec, proj_tvec, projector_matrix, projector_dist, dense_px);
-  append(dense_px, observed.dense_projector);
+  append(dense_px, observed.dense_projector, observed.dense_weights);
 }
 
 std::vector<double> JointProblem::residuals(const std::vector<double>& p) const {
@@ -139,7 +145,7 @@ cv::Mat JointProblem::view_jacobian(const std::vector<double>& p, int view, cons
     if (k < layout_.device_block()) {
       view_residuals(q, view, out);
     } else {
-      view_residuals(q, view, rays_at_p, out);
+      view_residuals(q, view, rays_at_p, true, out);
     }
   };
   cv::Mat j;

@@ -13,13 +13,26 @@
 
 namespace rfrecon::calib {
 
+// How much one series of a pose's observations (one device's corners, or the dense correspondences) counts in the
+// adjustment: every residual is multiplied by sqrt(pose), and a point marked in `dropped` counts not at all
+// (calib/residual_gating.h decides both).
+struct ObservationWeights {
+  double pose = 1.0;
+  std::vector<unsigned char> dropped;  // per point; empty: none dropped
+  bool kept(std::size_t point) const { return dropped.empty() || dropped[point] == 0; }
+  double of(std::size_t point) const { return kept(point) ? pose : 0.0; }
+};
+
 // One board pose's observations: its corners in both devices, in the same order as its object points, and dense
-// correspondences on the board (camera pixel, projector position; possibly none).
+// correspondences on the board (camera pixel, projector position; possibly none), with their weights.
 struct StereoCorners {
   std::vector<cv::Point2f> camera;
   std::vector<cv::Point2f> projector;
   std::vector<cv::Point2f> dense_camera;
   std::vector<cv::Point2f> dense_projector;
+  ObservationWeights camera_weights;
+  ObservationWeights projector_weights;
+  ObservationWeights dense_weights;
 };
 
 // Where each value lies in the parameter vector: camera then projector (fx, fy, cx, cy, distortion), om, T, then
@@ -50,9 +63,12 @@ class JointProblem {
 
   const JointLayout& layout() const { return layout_; }
 
-  // View `view`'s residuals: camera corners, projector corners, then dense correspondences, x and y interleaved.
+  // View `view`'s residuals as the adjustment weighs them (each times the square root of its weight): camera corners,
+  // projector corners, then dense correspondences, x and y interleaved.
   void view_residuals(const std::vector<double>& p, int view, std::vector<double>& out) const;
   std::vector<double> residuals(const std::vector<double>& p) const;
+  // The same residuals unweighted (projected - observed, px), dropped points included.
+  void view_errors(const std::vector<double>& p, int view, std::vector<double>& out) const;
 
   // The central-difference Jacobian of view `view`'s residuals over the parameters `index` (steps `step`).
   cv::Mat view_jacobian(const std::vector<double>& p, int view, const std::vector<int>& index,
@@ -72,8 +88,8 @@ class JointProblem {
   // The rays (undistorted normalised coordinates) of view `view`'s dense camera pixels under p's camera intrinsics and
   // distortion; empty without dense correspondences. Only the camera block of p changes them.
   std::vector<cv::Point2d> dense_rays(const std::vector<double>& p, int view) const;
-  // view_residuals with those rays given.
-  void view_residuals(const std::vector<double>& p, int view, const std::vector<cv::Point2d>& rays,
+  // view_residuals (weighted) or view_errors with those rays given.
+  void view_residuals(const std::vector<double>& p, int view, const std::vector<cv::Point2d>& rays, bool weighted,
                       std::vector<double>& out) const;
 
   std::vector<std::vector<cv::Point3d>> object_points_;  // double, so projectPoints works in double

@@ -1,9 +1,12 @@
 // Report charts, report.json and corners.json of a calibration.
 #include "calib/report_files.h"
 
+#include <algorithm>
+
 #include <opencv2/calib3d.hpp>
 
 #include "calib/report.h"
+#include "calib/residual_field.h"
 #include "host/core/atomic_file.h"
 #include "host/core/image_file.h"
 
@@ -40,6 +43,14 @@ std::vector<std::vector<cv::Point2f>> corners_of(const std::vector<StereoView>& 
   for (const auto& view : views) out.push_back(projector ? view.projector_corners : view.camera_corners);
   return out;
 }
+std::size_t dropped_count(const std::vector<std::vector<unsigned char>>& dropped, std::size_t view) {
+  return view < dropped.size() ? static_cast<std::size_t>(std::count(dropped[view].begin(), dropped[view].end(), 1))
+                               : 0;
+}
+
+cv::Mat field_background(const cv::Mat& background, cv::Size size) {
+  return background.empty() ? cv::Mat(size, CV_8UC1, cv::Scalar(0)) : background;
+}
 }  // namespace
 
 json camera_report_json(const CameraCalibration& calibration) {
@@ -64,11 +75,15 @@ json stereo_report_json(const StereoCalibration& calibration) {
     views.push_back({{"name", calibration.camera.view_names[i]},
                      {"camera_rms_px", calibration.fit.camera_view_rms_px[i]},
                      {"projector_rms_px", calibration.fit.projector_view_rms_px[i]},
-                     {"dense_rms_px", calibration.fit.dense_view_rms_px[i]}});
+                     {"dense_rms_px", calibration.fit.dense_view_rms_px[i]},
+                     {"camera_corners_dropped", dropped_count(calibration.camera_dropped, i)},
+                     {"projector_corners_dropped", dropped_count(calibration.projector_dropped, i)}});
   }
   cv::Vec3d om;
   cv::Rodrigues(rig.R, om);
   return {{"rms_px", rig.rms},
+          {"rms_all_corners_px", calibration.rms_all_px},
+          {"gating", gating_json(calibration.gating_thresholds, calibration.gating)},
           {"residual_sigma_px", calibration.fit.residual_sigma_px},
           {"camera", intrinsics_json(rig.camera_matrix, rig.dist_coeffs, u.camera_intrinsics, u.camera_dist_coeffs)},
           {"projector", intrinsics_json(rig.projector_matrix, rig.projector_dist_coeffs, u.projector_intrinsics,
@@ -112,13 +127,22 @@ void write_camera_report(const fs::path& dir, const CameraCalibration& calibrati
 }
 
 void write_stereo_report(const fs::path& dir, const StereoCalibration& calibration,
-                         const std::vector<StereoView>& views) {
+                         const std::vector<StereoView>& views, const cv::Mat& camera_background,
+                         const cv::Mat& projector_background) {
   const auto& names = calibration.camera.view_names;
   const StereoFit& fit = calibration.fit;
   write_image(dir / "errors.png",
               draw_error_chart(names, {"camera", "projector"}, {fit.camera_view_rms_px, fit.projector_view_rms_px}));
   write_image(dir / "residuals_camera.png", draw_residuals(names, fit.camera_residuals_px, "camera"));
   write_image(dir / "residuals_projector.png", draw_residuals(names, fit.projector_residuals_px, "projector"));
+  write_image(
+      dir / "residual_field_camera.png",
+      draw_residual_field(field_background(camera_background, calibration.rig.camera_size), names,
+                          corners_of(views, false), fit.camera_residuals_px, calibration.camera_dropped, "camera"));
+  write_image(dir / "residual_field_projector.png",
+              draw_residual_field(field_background(projector_background, calibration.rig.projector_size), names,
+                                  corners_of(views, true), fit.projector_residuals_px, calibration.projector_dropped,
+                                  "projector"));
   write_image(dir / "coverage_camera.png", draw_coverage_map(corners_of(views, false), calibration.rig.board,
                                                              calibration.rig.camera_size, "camera"));
   write_image(dir / "coverage_projector.png", draw_coverage_map(corners_of(views, true), calibration.rig.board,

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
 
 #include "calib/camera_calibration.h"
 #include "calib/stereo_calibration.h"
@@ -21,9 +22,11 @@ nlohmann::json corners_json(const std::vector<StereoView>& views);
 void write_camera_report(const std::filesystem::path& dir, const CameraCalibration& calibration,
                          const std::vector<BoardView>& views);
 
-// errors.png, residuals_{camera,projector}.png, coverage_{camera,projector}.png, report.json and corners.json,
-// into `dir`.
+// errors.png, residuals_{camera,projector}.png, residual_field_{camera,projector}.png (over the backgrounds: 8-bit
+// images of each device's size, e.g. the poses' images together; black where empty), coverage_{camera,projector}.png,
+// report.json (with the gating decisions) and corners.json, into `dir`.
 void write_stereo_report(const std::filesystem::path& dir, const StereoCalibration& calibration,
-                         const std::vector<StereoView>& views);
+                         const std::vector<StereoView>& views, const cv::Mat& camera_background,
+                         const cv::Mat& projector_background);
 
 }  // namespace rfrecon::calib

@@ -12,18 +12,47 @@
 namespace rfrecon::calib {
 
 namespace {
-// The RMS length of every corner residual in both devices, as cv::stereoCalibrate reports it (per point, not per
-// coordinate).
-double corner_rms(const StereoFit& fit) {
+constexpr int kGatingRounds = 3;
+
+// The RMS length of the corner residuals in both devices, as cv::stereoCalibrate reports it (per point, not per
+// coordinate): of the corners kept, or with `all` of every corner.
+double corner_rms(const StereoFit& fit, const std::vector<StereoCorners>& corners, bool all) {
   double sum = 0.0;
   std::size_t count = 0;
-  for (const auto* device : {&fit.camera_residuals_px, &fit.projector_residuals_px}) {
-    for (const auto& view : *device) {
-      for (const auto& r : view) sum += r.dot(r);
-      count += view.size();
+  for (std::size_t v = 0; v < corners.size(); ++v) {
+    for (const auto& [residuals, weights] :
+         {std::pair{&fit.camera_residuals_px[v], &corners[v].camera_weights},
+          std::pair{&fit.projector_residuals_px[v], &corners[v].projector_weights}}) {
+      for (std::size_t i = 0; i < residuals->size(); ++i) {
+        if (!all && !weights->kept(i)) continue;
+        sum += (*residuals)[i].dot((*residuals)[i]);
+        ++count;
+      }
     }
   }
   return count > 0 ? std::sqrt(sum / static_cast<double>(count)) : 0.0;
+}
+
+// One gating round over the fit's residuals: both devices' corners, then the dense correspondences per pose.
+std::vector<GatingDecision> gate_fit(const StereoFit& fit, const std::vector<StereoView>& views,
+                                     std::vector<StereoCorners>& corners, const GatingThresholds& thresholds, int round,
+                                     bool dense) {
+  std::vector<std::string> names;
+  names.reserve(views.size());
+  for (const auto& view : views) names.push_back(view.name);
+  std::vector<GatingDecision> decisions;
+  const auto gate = [&](const char* series, const std::vector<std::vector<cv::Point2d>>& residuals, bool per_point,
+                        ObservationWeights StereoCorners::*member) {
+    std::vector<ObservationWeights*> weights;
+    weights.reserve(corners.size());
+    for (auto& view : corners) weights.push_back(&(view.*member));
+    const auto made = gate_series(names, series, residuals, per_point, thresholds, round, weights);
+    decisions.insert(decisions.end(), made.begin(), made.end());
+  };
+  gate("camera", fit.camera_residuals_px, true, &StereoCorners::camera_weights);
+  gate("projector", fit.projector_residuals_px, true, &StereoCorners::projector_weights);
+  if (dense) gate("dense", fit.dense_residuals_px, false, &StereoCorners::dense_weights);
+  return decisions;
 }
 }  // namespace
 
@@ -57,7 +86,8 @@ StereoCalibration calibrate_stereo(const std::vector<StereoView>& views, const B
   for (const auto& view : views) {
     camera_points.push_back(view.camera_corners);
     projector_points.push_back(view.projector_corners);
-    corners.push_back({view.camera_corners, view.projector_corners, view.dense.camera, view.dense.projector});
+    corners.push_back(
+        {view.camera_corners, view.projector_corners, view.dense.camera, view.dense.projector, {}, {}, {}});
   }
   const int flags = cv::CALIB_USE_INTRINSIC_GUESS | distortion_flags(options.distortion);
   rig.rms =
@@ -73,7 +103,19 @@ StereoCalibration calibrate_stereo(const std::vector<StereoView>& views, const B
     adjust_stereo(rig, object_points, corners, options.distortion);
   }
   result.fit = analyse_stereo_fit(rig, object_points, corners, options.distortion);
-  if (dense) rig.rms = corner_rms(result.fit);
+  for (int round = 1; options.gating && round <= kGatingRounds; ++round) {
+    const auto decisions = gate_fit(result.fit, views, corners, result.gating_thresholds, round, dense);
+    if (decisions.empty()) break;
+    result.gating.insert(result.gating.end(), decisions.begin(), decisions.end());
+    adjust_stereo(rig, object_points, corners, options.distortion);
+    result.fit = analyse_stereo_fit(rig, object_points, corners, options.distortion);
+  }
+  if (dense || !result.gating.empty()) rig.rms = corner_rms(result.fit, corners, false);
+  result.rms_all_px = corner_rms(result.fit, corners, true);
+  for (const auto& view : corners) {
+    result.camera_dropped.push_back(view.camera_weights.dropped);
+    result.projector_dropped.push_back(view.projector_weights.dropped);
+  }
   rig.uncertainty = result.fit.uncertainty;
   for (std::size_t i = 0; i < views.size(); ++i) {
     rig.per_view_errors.push_back(std::hypot(result.fit.camera_view_rms_px[i], result.fit.projector_view_rms_px[i]) /

@@ -9,6 +9,7 @@
 
 #include "calib/camera_calibration.h"
 #include "calib/dense_correspondences.h"
+#include "calib/residual_gating.h"
 #include "calib/rig.h"
 #include "calib/stereo_fit.h"
 
@@ -28,11 +29,18 @@ struct StereoCalibration {
   CameraCalibration projector;
   StereoFit fit;                      // residuals and per-view errors of the joint solution
   std::vector<std::string> warnings;  // pose-set warnings (too few, too frontal, poor coverage of either image)
+  GatingThresholds gating_thresholds;
+  std::vector<GatingDecision> gating;                         // every corner dropped and pose down-weighted, in order
+  std::vector<std::vector<unsigned char>> camera_dropped;     // per view and corner: 1 where gating dropped it
+  std::vector<std::vector<unsigned char>> projector_dropped;  // (empty for a view with none dropped)
+  double rms_all_px = 0.0;  // the stereo RMS over every corner, the dropped ones included (rig.rms: the kept ones)
 };
 
 // Calibrates camera and projector separately (calibrate_camera checks view count and pose diversity), then adjusts
 // every board pose, both devices and the stereo pose together in cv::stereoCalibrate on the corners and, when views
-// hold dense correspondences, once more with them (adjust_stereo), then rectifies.
+// hold dense correspondences, once more with them (adjust_stereo); with options.gating, gates the residuals
+// (calib/residual_gating.h) and adjusts again with the corners dropped and the poses down-weighted, up to three
+// rounds while a round decides something; then rectifies.
 StereoCalibration calibrate_stereo(const std::vector<StereoView>& views, const BoardSpec& board, cv::Size camera_size,
                                    cv::Size projector_size, const CalibrationOptions& options = {});
 

@@ -48,10 +48,16 @@ std::vector<double> fitted_parameters(const StereoRig& rig, const std::vector<st
   return p;
 }
 
-double rms(const std::vector<cv::Point2d>& residuals) {
+// The RMS length of the residuals that `weights` keeps.
+double kept_rms(const std::vector<cv::Point2d>& residuals, const ObservationWeights& weights) {
   double sum = 0.0;
-  for (const auto& r : residuals) sum += r.dot(r);
-  return residuals.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(residuals.size()));
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < residuals.size(); ++i) {
+    if (!weights.kept(i)) continue;
+    sum += residuals[i].dot(residuals[i]);
+    ++count;
+  }
+  return count == 0 ? 0.0 : std::sqrt(sum / static_cast<double>(count));
 }
 
 // The standard deviations of parameters [first, first + count) of the full vector, 0 where not estimated.
@@ -72,7 +78,9 @@ std::size_t reject_dense_outliers(const StereoRig& rig, const std::vector<std::v
                                   std::vector<StereoCorners>& corners, DistortionModel model, double max_px) {
   std::vector<StereoCorners> corners_only;
   corners_only.reserve(corners.size());
-  for (const auto& view : corners) corners_only.push_back({view.camera, view.projector, {}, {}});
+  for (const auto& view : corners) {
+    corners_only.push_back({view.camera, view.projector, {}, {}, view.camera_weights, view.projector_weights, {}});
+  }
   const JointLayout layout = layout_of(corners, model);
   const std::vector<double> p =
       fitted_parameters(rig, object_points, corners_only, JointProblem(object_points, corners_only, layout));
@@ -80,7 +88,7 @@ std::size_t reject_dense_outliers(const StereoRig& rig, const std::vector<std::v
   std::size_t removed = 0;
   std::vector<double> residuals;
   for (int v = 0; v < layout.views; ++v) {
-    problem.view_residuals(p, v, residuals);
+    problem.view_errors(p, v, residuals);
     StereoCorners& view = corners[v];
     const std::size_t first = 4 * view.camera.size();  // the dense residuals follow both devices' corners
     std::size_t kept = 0;
@@ -124,10 +132,18 @@ StereoFit analyse_stereo_fit(const StereoRig& rig, const std::vector<std::vector
   const JointColumns columns = joint_columns(layout, model);
 
   StereoFit fit;
+  // Weighted residuals; a dropped point's are 0 and not counted.
   const std::vector<double> residuals = problem.residuals(p);
   double sum_sq = 0.0;
   for (const double r : residuals) sum_sq += r * r;
-  const double dof = static_cast<double>(residuals.size()) - static_cast<double>(columns.index.size());
+  std::size_t counted = 0;
+  for (const auto& view : corners) {
+    for (const auto* weights : {&view.camera_weights, &view.projector_weights}) {
+      for (std::size_t i = 0; i < view.camera.size(); ++i) counted += weights->kept(i) ? 2 : 0;
+    }
+    counted += 2 * view.dense_camera.size();
+  }
+  const double dof = static_cast<double>(counted) - static_cast<double>(columns.index.size());
   fit.residual_sigma_px = dof > 0 ? std::sqrt(sum_sq / dof) : std::numeric_limits<double>::quiet_NaN();
   cv::Mat jtj;
   cv::Mat jtr;
@@ -155,7 +171,7 @@ StereoFit analyse_stereo_fit(const StereoRig& rig, const std::vector<std::vector
     const int pose = layout.pose(v);
     fit.board_rvecs.emplace_back(p[pose], p[pose + 1], p[pose + 2]);
     fit.board_tvecs.emplace_back(p[pose + 3], p[pose + 4], p[pose + 5]);
-    problem.view_residuals(p, v, view);
+    problem.view_errors(p, v, view);
     // camera corners, projector corners, then the dense correspondences (view_residuals' order)
     const std::size_t corner_count = object_points[v].size();
     std::vector<cv::Point2d> by_part[3];
@@ -164,9 +180,10 @@ StereoFit analyse_stereo_fit(const StereoRig& rig, const std::vector<std::vector
       const int part = point < corner_count ? 0 : (point < 2 * corner_count ? 1 : 2);
       by_part[part].emplace_back(view[i], view[i + 1]);
     }
-    fit.camera_view_rms_px.push_back(rms(by_part[0]));
-    fit.projector_view_rms_px.push_back(rms(by_part[1]));
-    fit.dense_view_rms_px.push_back(rms(by_part[2]));
+    fit.camera_view_rms_px.push_back(kept_rms(by_part[0], corners[v].camera_weights));
+    fit.projector_view_rms_px.push_back(kept_rms(by_part[1], corners[v].projector_weights));
+    fit.dense_view_rms_px.push_back(kept_rms(by_part[2], corners[v].dense_weights));
+    fit.dense_residuals_px.push_back(std::move(by_part[2]));
     fit.camera_residuals_px.push_back(std::move(by_part[0]));
     fit.projector_residuals_px.push_back(std::move(by_part[1]));
   }

@@ -20,10 +20,12 @@ struct StereoFit {
   std::vector<cv::Vec3d> board_tvecs;                            // mm
   std::vector<std::vector<cv::Point2d>> camera_residuals_px;     // projected - detected, per view and corner
   std::vector<std::vector<cv::Point2d>> projector_residuals_px;  // same for the projector
-  std::vector<double> camera_view_rms_px;
+  std::vector<std::vector<cv::Point2d>> dense_residuals_px;      // of the dense correspondences, per view
+  std::vector<double> camera_view_rms_px;                        // over the corners kept (not dropped by gating)
   std::vector<double> projector_view_rms_px;
   std::vector<double> dense_view_rms_px;  // of the dense correspondences, per view (0 for a view without them)
-  double residual_sigma_px = 0.0;         // sqrt(sum of squared residuals / (residuals - parameters)), per coordinate
+  // sqrt(sum of squared weighted residuals / (residuals kept - parameters)), per coordinate
+  double residual_sigma_px = 0.0;
 };
 
 // Removes from `corners` every dense correspondence farther than `max_px` from where the rig, with each board pose

@@ -10,7 +10,7 @@ packages=(
   ocl-icd-opencl-dev opencl-c-headers opencl-clhpp-headers pocl-opencl-icd clinfo oclgrind
   libeigen3-dev libopencv-dev libopencv-contrib-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libcli11-dev nlohmann-json3-dev libspdlog-dev libhdf5-dev libassimp-dev
+  libcli11-dev nlohmann-json3-dev libspdlog-dev libhdf5-dev libassimp-dev libtiff-dev
 )
 
 missing=()

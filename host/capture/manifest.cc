@@ -283,7 +283,7 @@ void write_manifest(const CaptureManifest& manifest, const fs::path& capture_dir
   write_file_atomically(capture_dir / kManifestFileName, root.dump(2) + "\n");
 }
 
-CaptureManifest manifest_from_opencv_layout(const fs::path& capture_dir, cv::Size projector_size) {
+CaptureManifest manifest_from_opencv_layout(const fs::path& capture_dir, cv::Size projector_size, int bit_depth) {
   static const std::set<std::string> kImageExtensions{".png", ".tif", ".tiff", ".bmp", ".jpg", ".jpeg", ".pgm", ".ppm"};
   std::error_code ec;
   if (!fs::is_directory(capture_dir, ec)) {
@@ -307,8 +307,14 @@ CaptureManifest manifest_from_opencv_layout(const fs::path& capture_dir, cv::Siz
   CaptureManifest manifest;
   manifest.projector_size = projector_size;
   for (std::size_t i = 0; i < files.size(); ++i) manifest.frames.push_back({sequence[i], files[i]});
-  const cv::Mat first = decode_image(capture_dir / files.front(), cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
-  manifest.bit_depth = first.depth() == CV_8U ? 8 : 16;
+  const fs::path first_file = capture_dir / files.front();
+  const cv::Mat first = decode_image(first_file, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
+  const int file_bits = first.depth() == CV_8U ? 8 : 16;
+  if (bit_depth != 0 && (bit_depth == 8) != (file_bits == 8)) {
+    throw InputError(first_file.string() + ": " + std::to_string(file_bits) + "-bit samples, but --bit-depth " +
+                     std::to_string(bit_depth) + " (8 needs 8-bit files; 10, 12 and 16 need 16-bit files)");
+  }
+  manifest.bit_depth = bit_depth != 0 ? bit_depth : file_bits;
   manifest.camera_size = first.size();
   return manifest;
 }

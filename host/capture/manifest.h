@@ -54,9 +54,11 @@ std::vector<std::filesystem::path> capture_files(const std::filesystem::path& ca
 void write_manifest(const CaptureManifest& manifest, const std::filesystem::path& capture_dir);
 
 // A manifest for a directory without one, laid out as OpenCV capture scripts save it (`--layout opencv-graycode`):
-// image files sorted by name are opencv_graycode_protocol(projector_size). Throws InputError when the file count
-// does not match.
-CaptureManifest manifest_from_opencv_layout(const std::filesystem::path& capture_dir, cv::Size projector_size);
+// image files sorted by name are opencv_graycode_protocol(projector_size). `bit_depth` is the camera's (8 for 8-bit
+// files; 10, 12 or 16 for 16-bit files holding 0..2^bits-1), 0 for the files' own (8 or 16). Throws InputError when
+// the file count does not match, or the files' depth does not fit `bit_depth`.
+CaptureManifest manifest_from_opencv_layout(const std::filesystem::path& capture_dir, cv::Size projector_size,
+                                            int bit_depth = 0);
 
 // Raw camera samples to linear units: (sample - black) * scale in float arithmetic, so the black level is 0 exactly and
 // full scale 1. The transport kernels apply it to raw frames in registers (kernels/common/frame_batch.h).

@@ -93,6 +93,7 @@ struct StereoOptions {
   CaptureOptions capture;
   std::string devices;
   int dense_points = calib::CalibrationOptions{}.dense_points;
+  bool no_gating = false;
   bool force = false;
 };
 
@@ -103,6 +104,7 @@ void run_calibrate(const StereoOptions& options) {
   request.board = board_spec(options.board);
   request.options = calibration_options(options.board);
   request.options.dense_points = options.dense_points;
+  request.options.gating = !options.no_gating;
   request.output = options.output;
   request.report_dir = options.report.empty() ? calib::default_report_dir(options.output) : options.report;
   request.force = options.force;
@@ -111,8 +113,10 @@ void run_calibrate(const StereoOptions& options) {
   const auto run = pipeline::calibrate_rig(request, devices, programs);
   sched::log_reports(run.schedule);
   const auto& result = run.calibration;
-  std::printf("%zu of %zu poses used; stereo reprojection RMS %.4f px\n", run.view_names.size(), run.poses,
-              result.rig.rms);
+  std::printf(
+      "%zu of %zu poses used; stereo reprojection RMS %.4f px (%.4f px over every corner; %zu gating "
+      "decisions)\n",
+      run.view_names.size(), run.poses, result.rig.rms, result.rms_all_px, result.gating.size());
   const auto& rig = result.rig;
   print_intrinsics("camera", rig.camera_matrix, rig.dist_coeffs, rig.uncertainty.camera_intrinsics);
   print_intrinsics("projector", rig.projector_matrix, rig.projector_dist_coeffs, rig.uncertainty.projector_intrinsics);
@@ -152,6 +156,8 @@ void add_calibrate_commands(CLI::App& app) {
                    "adjustment (0: corners only)")
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
+  stereo_command->add_flag("--no-gating", stereo->no_gating,
+                           "Keep every corner and pose at full weight (no robust gating of outlying residuals)");
   add_capture_options(stereo_command, stereo->capture);
   add_devices_option(stereo_command, stereo->devices);
   add_tile_timeout_option(stereo_command);

@@ -39,6 +39,7 @@ void add_selfcheck_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_patterns_command(CLI::App& app);
 void add_transport_command(CLI::App& app);
+void add_check_command(CLI::App& app);
 void add_dual_command(CLI::App& app);
 void add_calibrate_commands(CLI::App& app);
 void add_evaluate_command(CLI::App& app);

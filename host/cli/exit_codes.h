@@ -13,6 +13,7 @@ enum ExitCode : int {
   kExitProcessing = 6,  // valid input the method cannot process (no board found, too few poses, all masked)
   kExitSelfcheck = 7,   // `rfrecon selfcheck` found a device whose results differ from the C++ reference
   kExitOutput = 8,      // an output could not be written (permission, read-only file system, disk full)
+  kExitCheck = 9,       // `rfrecon check` found a problem in the capture
 };
 
 }  // namespace rfrecon::cli

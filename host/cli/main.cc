@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
   add_simulate_command(app);
   add_patterns_command(app);
   add_transport_command(app);
+  add_check_command(app);
   add_dual_command(app);
   add_calibrate_commands(app);
   add_reconstruct_command(app);

@@ -65,6 +65,12 @@ void add_reconstruct_command(CLI::App& app) {
                    "own (albedo and shadow edges bias the correspondence)")
       ->check(finite_positive())
       ->capture_default_str();
+  command
+      ->add_option("--edge-footprint", depth.rectification.edge_footprint_px2,
+                   "Correct the correspondences on albedo and shadow edges for a camera-pixel footprint of this "
+                   "second moment (px^2: 1/12 for a sharp pixel, plus the blur's variance; 0: off)")
+      ->check(finite_non_negative())
+      ->capture_default_str();
   command->add_option("--jump", depth.segmentation.jump_relative, "Relative depth step that ends a run")
       ->check(finite_positive())
       ->capture_default_str();

@@ -30,8 +30,18 @@ void run_transport(TransportOptions options) {
   }
   cl::ProgramCache programs;
   const auto file_run = pipeline::transport_capture(request, devices, programs);
-  std::printf("transport: %zu of %zu camera pixels decoded, wrote %s\nstage timings:\n", file_run.decoded_pixels,
-              file_run.run.transport.camera_pixels(), request.output.string().c_str());
+  log_check_findings(file_run.run.checks, request.capture_dir.string());
+  std::printf("transport: %zu of %zu camera pixels decoded", file_run.decoded_pixels(),
+              file_run.run.transport.camera_pixels());
+  if (const auto& gray = file_run.run.gray_decision) {
+    std::printf(" (%zu between two adjacent codes)", gray->between_codes);
+  }
+  std::printf(", wrote %s\nno correspondence:", request.output.string().c_str());
+  for (std::size_t i = 1; i < transport::kPixelOutcomes; ++i) {
+    std::printf(" %s %zu%s", transport::outcome_name(static_cast<transport::PixelOutcome>(i)), file_run.outcomes[i],
+                i + 1 < transport::kPixelOutcomes ? "," : "\n");
+  }
+  std::printf("stage timings:\n");
   for (const auto& timing : file_run.run.timings) {
     std::printf("  %-12s %8.3f s\n", timing.stage.c_str(), timing.seconds);
   }
@@ -48,7 +58,10 @@ void add_transport_command(CLI::App& app) {
   command->add_option("-o,--output", options->request.output, "Output file (T.h5)")->required();
   command->add_option("--summary", options->request.summary,
                       "Also write stage timings and per-device shares to this JSON");
-  command->add_flag("--force", options->request.force, "Replace existing output and summary files");
+  command->add_option("--maps", options->request.maps,
+                      "Also write decoded.png (each pixel's projector column and row) and outcomes.png (why each "
+                      "pixel without a correspondence has none) into this directory");
+  command->add_flag("--force", options->request.force, "Replace existing output, summary and maps");
   add_capture_options(command, options->capture);
   add_devices_option(command, options->devices);
   add_tile_timeout_option(command);
@@ -59,12 +72,16 @@ void add_transport_command(CLI::App& app) {
   command->add_option("--black-threshold", setup.thresholds.black, "Lit when white - black exceeds this (linear)")
       ->check(finite_non_negative())
       ->capture_default_str();
-  command->add_option("--white-threshold", setup.thresholds.white, "Gray bit trusted when |pattern - inverse| exceeds")
-      ->check(finite_non_negative())
-      ->capture_default_str();
+  command
+      ->add_option("--white-threshold", setup.thresholds.white,
+                   "Gray bit trusted when |pattern - inverse| exceeds this (linear; 0, the default: 4.5 DN at the "
+                   "capture's bit depth); Gray-code-only captures also need 3 sigma of each pixel's noise and 2 % of "
+                   "its white - black")
+      ->check(finite_non_negative());
   command
       ->add_option("--noise-threshold", setup.thresholds.noise,
-                   "Transport entries at or below are dropped (default: 2.5 DN at the capture's bit depth)")
+                   "Transport entries at or below are dropped (linear; 0, the default: 2.5 DN at the capture's bit "
+                   "depth)")
       ->check(finite_non_negative());
   add_entry_option(command, options->request.entries);
   command->add_option("--readers", options->request.readers, "Threads reading frames ahead of the devices")

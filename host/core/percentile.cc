@@ -79,4 +79,12 @@ float finite_percentile(const cv::Mat& image, double fraction) {
   });
 }
 
+double percentile_of(std::vector<double> values, double fraction) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const auto at = values.begin() +
+                  static_cast<std::ptrdiff_t>(std::clamp(fraction, 0.0, 1.0) * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), at, values.end());
+  return *at;
+}
+
 }  // namespace rfrecon

@@ -1,4 +1,4 @@
-// Binary little-endian PLY writer: header text, then each vertex's floats as little-endian bytes.
+// Binary little-endian PLY writer: header text, then each vertex's floats as little-endian bytes and its colour bytes.
 #include "host/core/ply.h"
 
 #include <cctype>
@@ -32,13 +32,15 @@ bool is_property_name(const std::string& name) {
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
   }
   return name != "x" && name != "y" && name != "z" && name != "nx" && name != "ny" && name != "nz" && name != "u" &&
-         name != "v";
+         name != "v" && name != "red" && name != "green" && name != "blue";
 }
 }  // namespace
 
 void write_point_cloud_ply(const std::filesystem::path& file, const std::string& comment, const cv::Mat& points,
-                           const cv::Mat& normals, const std::vector<PlyScalarMap>& scalars) {
+                           const cv::Mat& normals, const std::vector<PlyScalarMap>& scalars,
+                           const cv::Mat& colours_rgb) {
   check_map(points, CV_32FC3, points.size(), "points");
+  if (!colours_rgb.empty()) check_map(colours_rgb, CV_8UC3, points.size(), "colours");
   check_map(normals, CV_32FC3, points.size(), "normals");
   for (const auto& scalar : scalars) {
     if (!is_property_name(scalar.name)) {
@@ -65,6 +67,10 @@ void write_point_cloud_ply(const std::filesystem::path& file, const std::string&
         const float value = scalar.values.at<float>(y, x);
         append_little_endian(body, std::isfinite(value) ? value : 0.0f);
       }
+      if (!colours_rgb.empty()) {
+        const cv::Vec3b& rgb = colours_rgb.at<cv::Vec3b>(y, x);
+        body.append({static_cast<char>(rgb[0]), static_cast<char>(rgb[1]), static_cast<char>(rgb[2])});
+      }
       ++count;
     }
   }
@@ -77,6 +83,7 @@ void write_point_cloud_ply(const std::filesystem::path& file, const std::string&
     header += std::string("property float ") + name + "\n";
   }
   for (const auto& scalar : scalars) header += "property float " + scalar.name + "\n";
+  if (!colours_rgb.empty()) header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   header += "end_header\n";
   write_file_atomically(file, header + body);
 }

@@ -20,6 +20,7 @@
 #include "host/core/parallel_rows.h"
 #include "host/core/percentile.h"
 #include "host/depth/bilinear.h"
+#include "host/depth/edge_bias.h"
 #include "host/depth/solid_angle.h"
 
 namespace rfrecon::depth {
@@ -48,8 +49,8 @@ bool interpolate_grid(const cv::Mat& grid, cv::Point2f p, cv::Point2f& out) {
 
 // A pixel on an occlusion boundary sees both surfaces: its spot mixes theirs and it triangulates onto either, whatever
 // its centre sees. Rejects every pixel with a neighbour within `radius` pixels whose depth differs by more than
-// `relative` of its own (both sides of the boundary, `radius` pixels each). Gray-code-only captures need radius 2:
-// there the mixed pixels of a silhouette often fail to decode, leaving a one-pixel gap between the two surfaces.
+// `relative` of its own (both sides of the boundary, `radius` pixels each). Gray-code-only captures use radius 2:
+// there a mixed pixel of a silhouette may fail to decode, leaving a one-pixel gap between the two surfaces.
 void reject_boundary_pixels(CameraGridTriangulation& result, float relative, int radius) {
   const cv::Mat z = result.z_rect_mm.clone();
   result.boundary_pixels = count_over_rows(z.rows, [&](int y) {
@@ -77,8 +78,8 @@ void reject_boundary_pixels(CameraGridTriangulation& result, float relative, int
 // footprint straddles an albedo, shadow or silhouette edge, the brighter side weighs more and the centroid moves
 // toward it (by up to half a projector pixel on the calibration board's squares). Such a pixel is recognised by its
 // direct energy: a 4-neighbour's differs from its own by more than `relative` of it (a neighbour without a
-// correspondence counts as 0). On uniform surfaces neighbours differ by a few percent. Dot captures only: in a
-// Gray-code-only capture many pixels beside a code transition do not decode, and the crossing estimate is another.
+// correspondence counts as 0). On uniform surfaces neighbours differ by a few percent. Gray-code-only captures,
+// whose direct energy is white - black, are biased the same way: their crossings move toward the brighter side.
 void reject_edge_pixels(CameraGridTriangulation& result, const transport::CompressedTransport& transport,
                         float relative) {
   const cv::Size size = transport.setup.camera_size;
@@ -198,8 +199,18 @@ CameraGridTriangulation triangulate_camera_grid(const transport::CompressedTrans
   CameraGridTriangulation result;
   // The pixels with a correspondence, in pixel order, gathered on every core: counted per row, then each row's
   // written from its offset.
-  const auto x_of = [](int c) { return 2 * static_cast<std::size_t>(c); };  // in transport.correspondence
-  const auto has_correspondence = [&](int c) { return !std::isnan(transport.correspondence[x_of(c)]); };
+  std::vector<float> corrected;
+  if (options.edge_footprint_px2 > 0.0f) {
+    if (transport.white.empty()) {
+      throw InputError(
+          "T has no white frame (dataset 'white'), which the edge correction (--edge-footprint) needs: "
+          "run rfrecon transport on the capture again");
+    }
+    corrected = correct_edge_bias(transport.correspondence, transport.white, camera_size, options.edge_footprint_px2);
+  }
+  const std::vector<float>& decoded = corrected.empty() ? transport.correspondence : corrected;
+  const auto x_of = [](int c) { return 2 * static_cast<std::size_t>(c); };  // in decoded
+  const auto has_correspondence = [&](int c) { return !std::isnan(decoded[x_of(c)]); };
   std::vector<int> row_start(static_cast<std::size_t>(camera_size.height) + 1, 0);
   for_each_row(camera_size.height, [&](int y) {
     int count = 0;
@@ -213,7 +224,7 @@ CameraGridTriangulation triangulate_camera_grid(const transport::CompressedTrans
     auto at = static_cast<std::size_t>(row_start[static_cast<std::size_t>(y)]);
     for (int c = y * camera_size.width; c < (y + 1) * camera_size.width; ++c) {
       if (!has_correspondence(c)) continue;
-      correspondences[at] = {transport.correspondence[x_of(c)], transport.correspondence[x_of(c) + 1]};
+      correspondences[at] = {decoded[x_of(c)], decoded[x_of(c) + 1]};
       with_correspondence[at++] = c;
     }
   });
@@ -246,7 +257,7 @@ CameraGridTriangulation triangulate_camera_grid(const transport::CompressedTrans
   });
   result.off_epipolar = off_epipolar;
   reject_boundary_pixels(result, options.boundary_relative, transport.setup.dot_spacing == 0 ? 2 : 1);
-  if (transport.setup.dot_spacing > 0) reject_edge_pixels(result, transport, options.edge_relative);
+  reject_edge_pixels(result, transport, options.edge_relative);
   return result;
 }
 

@@ -17,6 +17,9 @@ struct RectificationOptions {
   float saturation = 0.97f;            // a pixel with a T entry at or above this (linear, 1 = full scale) is dropped
   float boundary_relative = 0.01f;     // a depth step this large (relative) to a 3x3 neighbour: an occlusion boundary
   float edge_relative = 0.3f;  // a direct-energy step this large (relative) to a 4-neighbour: an albedo or shadow edge
+  // > 0: correspondences corrected for a camera-pixel footprint of this second moment (px^2) on albedo and shadow
+  // edges before triangulation (host/depth/edge_bias.h; needs T's white frame); 0: as decoded.
+  float edge_footprint_px2 = 0.0f;
 };
 
 // The rectification the depth stage works in: calib::rectify_rig, computed from the rig's intrinsics, R and T (the

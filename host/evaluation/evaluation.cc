@@ -16,6 +16,7 @@
 #include "host/core/atomic_file.h"
 #include "host/core/errors.h"
 #include "host/core/image_file.h"
+#include "host/outputs/legend.h"
 
 namespace rfrecon::evaluation {
 
@@ -211,7 +212,14 @@ void write_evaluation(const Evaluation& evaluation, const fs::path& report_file,
   const std::string recorded =
       !relative.empty() && relative.begin()->string() != ".." ? relative.string() : error_map_file.string();
   std::vector<unsigned char> png;
-  if (!cv::imencode(".png", error_map(evaluation), png)) throw std::runtime_error("cannot encode the error map");
+  const double full_scale_mm = error_map_full_scale_mm(evaluation);
+  const outputs::Legend legend{"|depth error| (mm)",
+                               outputs::colour_bar_key(cv::COLORMAP_TURBO),
+                               outputs::bar_ticks(0.0, full_scale_mm, full_scale_mm < 1.0 ? 3 : 2, ">= "),
+                               {"1 % of the object's size", "black: not reconstructed", "grey: not the object"}};
+  if (!cv::imencode(".png", outputs::with_legend(error_map(evaluation), legend), png)) {
+    throw std::runtime_error("cannot encode the error map");
+  }
   write_file_atomically(error_map_file, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
   write_file_atomically(report_file, evaluation_report(evaluation, recorded).dump(2) + "\n");
 }

@@ -75,7 +75,8 @@ nlohmann::ordered_json evaluation_report(const Evaluation& evaluation, const std
 // A short human-readable table of the report's figures.
 std::string evaluation_table(const Evaluation& evaluation);
 
-// Writes the report (evaluation_report, pretty-printed) and the error-map PNG, each atomically.
+// Writes the report (evaluation_report, pretty-printed) and the error-map PNG (error_map with its legend to the
+// right, outputs::with_legend), each atomically.
 void write_evaluation(const Evaluation& evaluation, const std::filesystem::path& report_file,
                       const std::filesystem::path& error_map_file);
 

@@ -11,6 +11,7 @@ struct Reconstruction {
   cv::Mat points_mm;   // CV_32FC3: X_cam of that point, NaN where none
   cv::Mat normals;     // CV_32FC3: unit normal facing the camera, NaN where none
   cv::Mat confidence;  // CV_32F in [0, 1]: 0 where none, higher is more trusted
+  cv::Mat white;       // CV_32F: linear white frame (1 = full scale), the PLY's colour; empty: none (uncoloured)
 };
 
 }  // namespace rfrecon::outputs

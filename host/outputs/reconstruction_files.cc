@@ -1,4 +1,4 @@
-// Writes and reads the reconstruction output directory; renders its previews.
+// Writes and reads the reconstruction output directory; renders its previews and the point cloud's colours.
 #include "host/outputs/reconstruction_files.h"
 
 #include <algorithm>
@@ -14,6 +14,7 @@
 #include "host/core/image_file.h"
 #include "host/core/percentile.h"
 #include "host/core/ply.h"
+#include "host/outputs/legend.h"
 
 namespace rfrecon::outputs {
 
@@ -32,6 +33,50 @@ void check_maps(const Reconstruction& r) {
   check(r.points_mm, CV_32FC3, "points_mm");
   check(r.normals, CV_32FC3, "normals");
   check(r.confidence, CV_32FC1, "confidence");
+  if (!r.white.empty()) check(r.white, CV_32FC1, "white");
+}
+
+// OpenCV's TIFF codec stores a 3-channel image's channels in reverse (BGR in memory, RGB in the file): these reverse
+// them around it, so that channel 0 in memory is the file's first sample (x), as any other TIFF reader sees it.
+void write_xyz_tiff(const fs::path& file, const cv::Mat& xyz) {
+  cv::Mat reversed;
+  cv::cvtColor(xyz, reversed, cv::COLOR_RGB2BGR);
+  write_image(file, reversed);
+}
+
+cv::Mat read_xyz_tiff(const fs::path& file) {
+  cv::Mat xyz;
+  cv::cvtColor(read_image(file, CV_32FC3), xyz, cv::COLOR_BGR2RGB);
+  return xyz;
+}
+
+// The normals' legend key: a sphere facing the camera, coloured as normals_preview colours its normals.
+cv::Mat normals_key() {
+  constexpr int kSide = 101;
+  constexpr float kRadius = 50.0f;
+  cv::Mat normals(kSide, kSide, CV_32FC3, cv::Scalar::all(NAN));
+  cv::Mat depth(kSide, kSide, CV_32F, cv::Scalar(NAN));
+  for (int y = 0; y < kSide; ++y) {
+    for (int x = 0; x < kSide; ++x) {
+      const float nx = (x - kRadius) / kRadius, ny = (y - kRadius) / kRadius, r2 = nx * nx + ny * ny;
+      if (r2 > 1.0f) continue;
+      normals.at<cv::Vec3f>(y, x) = {nx, ny, -std::sqrt(1.0f - r2)};
+      depth.at<float>(y, x) = 1.0f;
+    }
+  }
+  return normals_preview(normals, depth);
+}
+
+void write_previews(const fs::path& dir, const Reconstruction& r) {
+  const auto [low, high] = depth_preview_range(r.depth_mm);
+  Legend depth{"depth z (mm)", colour_bar_key(cv::COLORMAP_TURBO), {}, {"1st to 99th percentile", "black: no depth"}};
+  if (!std::isnan(low)) depth.ticks = bar_ticks(low, high, high - low < 10.0 ? 2 : 1);
+  write_image(dir / "depth.png", with_legend(depth_preview(r.depth_mm), depth));
+  const Legend normals{
+      "normal (unit vector)", normals_key(), {}, {"RGB = 255 (n + 1) / 2", "x right, y down", "black: no depth"}};
+  write_image(dir / "normals.png", with_legend(normals_preview(r.normals, r.depth_mm), normals));
+  const Legend confidence{"confidence (0 to 1)", grey_bar_key(), bar_ticks(0.0, 1.0, 1), {"black: no depth"}};
+  write_image(dir / "confidence.png", with_legend(confidence_preview(r.confidence, r.depth_mm), confidence));
 }
 
 // 255 where the depth is finite.
@@ -39,11 +84,16 @@ cv::Mat valid_mask(const cv::Mat& depth_mm) { return depth_mm == depth_mm; }
 
 }  // namespace
 
+std::pair<double, double> depth_preview_range(const cv::Mat& depth_mm) {
+  const double low = finite_percentile(depth_mm, 0.01);
+  if (std::isnan(low)) return {low, low};
+  return {low, std::max(static_cast<double>(finite_percentile(depth_mm, 0.99)), low + 1e-6)};
+}
+
 cv::Mat depth_preview(const cv::Mat& depth_mm) {
   cv::Mat preview = cv::Mat::zeros(depth_mm.size(), CV_8UC3);
-  const double low = finite_percentile(depth_mm, 0.01);
+  const auto [low, high] = depth_preview_range(depth_mm);
   if (std::isnan(low)) return preview;
-  const double high = std::max(static_cast<double>(finite_percentile(depth_mm, 0.99)), low + 1e-6);
   cv::Mat scaled;
   depth_mm.convertTo(scaled, CV_8U, 255.0 / (high - low), -255.0 * low / (high - low));  // saturates outside
   cv::Mat coloured;
@@ -75,6 +125,20 @@ cv::Mat confidence_preview(const cv::Mat& confidence, const cv::Mat& depth_mm) {
   return preview;
 }
 
+cv::Mat white_colours_rgb(const cv::Mat& white) {
+  cv::Mat colours(white.size(), CV_8UC3);
+  for (int y = 0; y < white.rows; ++y) {
+    for (int x = 0; x < white.cols; ++x) {
+      const float linear = std::clamp(white.at<float>(y, x), 0.0f, 1.0f);
+      const float encoded =
+          linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;  // sRGB
+      const uchar level = cv::saturate_cast<uchar>(255.0f * encoded);
+      colours.at<cv::Vec3b>(y, x) = {level, level, level};
+    }
+  }
+  return colours;
+}
+
 void write_reconstruction(const Reconstruction& reconstruction, const nlohmann::json& summary, const fs::path& out_dir,
                           bool force) {
   check_maps(reconstruction);
@@ -89,13 +153,15 @@ void write_reconstruction(const Reconstruction& reconstruction, const nlohmann::
   const fs::path dir = staging.path();
   const Reconstruction& r = reconstruction;
   write_image(dir / "depth.tiff", r.depth_mm);
-  write_image(dir / "normals.tiff", r.normals);
+  write_xyz_tiff(dir / "points.tiff", r.points_mm);
+  write_xyz_tiff(dir / "normals.tiff", r.normals);
   write_image(dir / "confidence.tiff", r.confidence);
-  write_point_cloud_ply(dir / "points.ply", "rfrecon reconstruction, camera frame, mm; quality = confidence",
-                        r.points_mm, r.normals, {{"quality", r.confidence}});
-  write_image(dir / "depth.png", depth_preview(r.depth_mm));
-  write_image(dir / "normals.png", normals_preview(r.normals, r.depth_mm));
-  write_image(dir / "confidence.png", confidence_preview(r.confidence, r.depth_mm));
+  write_point_cloud_ply(dir / "points.ply",
+                        std::string("rfrecon reconstruction, camera frame, mm; quality = confidence") +
+                            (r.white.empty() ? "" : "; colour = white frame, sRGB"),
+                        r.points_mm, r.normals, {{"quality", r.confidence}},
+                        r.white.empty() ? cv::Mat() : white_colours_rgb(r.white));
+  write_previews(dir, r);
   write_file_atomically(dir / "summary.json", summary.dump(2) + "\n");
   staging.commit();
 }
@@ -105,9 +171,11 @@ Reconstruction read_reconstruction(const fs::path& dir) {
   if (!fs::is_directory(dir, ec)) throw InputError(dir.string() + ": not a reconstruction directory");
   Reconstruction r;
   r.depth_mm = read_image(dir / "depth.tiff", CV_32FC1);
-  r.normals = read_image(dir / "normals.tiff", CV_32FC3);
+  r.points_mm = read_xyz_tiff(dir / "points.tiff");
+  r.normals = read_xyz_tiff(dir / "normals.tiff");
   r.confidence = read_image(dir / "confidence.tiff", CV_32FC1);
-  for (const auto& [map, name] : {std::pair{&r.normals, "normals.tiff"}, std::pair{&r.confidence, "confidence.tiff"}}) {
+  for (const auto& [map, name] : {std::pair{&r.points_mm, "points.tiff"}, std::pair{&r.normals, "normals.tiff"},
+                                  std::pair{&r.confidence, "confidence.tiff"}}) {
     if (map->size() != r.depth_mm.size()) {
       throw InputError((dir / name).string() + ": " + size_text(map->size()) + ", expected " +
                        size_text(r.depth_mm.size()) + " (the size of depth.tiff)");

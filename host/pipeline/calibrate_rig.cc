@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
+#include "calib/board_detection.h"
 #include "calib/pose_observation.h"
 #include "calib/report.h"
 #include "calib/report_files.h"
@@ -34,6 +35,16 @@ void merge_stages(std::vector<sched::RunReport>& total, const std::vector<sched:
   }
 }
 
+// The brightest of each pose's 8-bit detection image at every pixel: the backdrop of the residual fields.
+void add_to_background(cv::Mat& background, const cv::Mat& image) {
+  const cv::Mat levels = calib::to_detection_image(image);
+  if (background.empty()) {
+    background = levels.clone();
+  } else {
+    cv::max(background, levels, background);
+  }
+}
+
 std::string pose_name(const fs::path& pose_dir) {
   return pose_dir.filename().empty() ? pose_dir.parent_path().filename().string() : pose_dir.filename().string();
 }
@@ -44,7 +55,7 @@ RigCalibrationRun calibrate_rig(const RigCalibrationRequest& request, std::vecto
   std::vector<fs::path> inputs;
   for (const auto& pose_dir : request.pose_dirs) {
     const auto manifest = transport::open_capture(pose_dir, request.source.layout, request.source.projector_size,
-                                                  request.source.frame_paths);
+                                                  request.source.frame_paths, request.source.bit_depth);
     const auto files = capture::capture_files(pose_dir, manifest);
     inputs.insert(inputs.end(), files.begin(), files.end());
   }
@@ -59,10 +70,13 @@ RigCalibrationRun calibrate_rig(const RigCalibrationRequest& request, std::vecto
   std::vector<calib::StereoView> views;
   cv::Size camera_size;
   cv::Size projector_size;
+  cv::Mat camera_background;
+  cv::Mat projector_background;
   Progress progress("calibrate", request.pose_dirs.size(), "poses");
   for (const auto& pose_dir : request.pose_dirs) {
     const auto captured = transport::view_capture(pose_dir, request.source, devices, programs);
     merge_stages(run.schedule, captured.schedule);
+    for (const auto& finding : captured.checks.findings) spdlog::warn("{}: {}", pose_dir.string(), finding.message);
     const auto pose = calib::observe_board(pose_name(pose_dir), captured.camera_image, captured.dual_image,
                                            captured.dual_reached, captured.correspondence, request.board);
     if (camera_size.empty()) {
@@ -77,6 +91,8 @@ RigCalibrationRun calibrate_rig(const RigCalibrationRequest& request, std::vecto
     write_image(report.path() / ("dual_" + pose.name + ".png"),
                 calib::draw_corners(pose.dual_image, request.board, pose.projector_corners));
     if (pose.usable()) {
+      add_to_background(camera_background, pose.camera_image);
+      add_to_background(projector_background, pose.dual_image);
       views.push_back({pose.name, pose.camera_corners, pose.projector_corners,
                        calib::sample_dense_correspondences(pose.camera_image, captured.correspondence,
                                                            pose.camera_corners, request.options.dense_points)});
@@ -95,7 +111,8 @@ RigCalibrationRun calibrate_rig(const RigCalibrationRequest& request, std::vecto
     return calib::calibrate_stereo(views, request.board, camera_size, projector_size, request.options);
   });
   for (const auto& warning : run.calibration.warnings) spdlog::warn("calibrate: {}", warning);
-  calib::write_stereo_report(report.path(), run.calibration, views);
+  for (const auto& decision : run.calibration.gating) spdlog::warn("calibrate: gating: {}", decision.describe());
+  calib::write_stereo_report(report.path(), run.calibration, views, camera_background, projector_background);
   write_file_atomically(report.path() / "schedule.json", nlohmann::json(run.schedule).dump(2) + "\n");
   report.commit();  // the secondary output first: a report that cannot be moved into place fails before rig.yaml
   calib::write_rig(run.calibration.rig, request.output);

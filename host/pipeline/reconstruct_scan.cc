@@ -1,4 +1,4 @@
-// Reads T and the rig, runs the depth stage, writes the output directory.
+// Reads T and the rig, runs the depth stage, writes the output directory with the white frame as the PLY's colour.
 #include "host/pipeline/reconstruct_scan.h"
 
 #include <spdlog/spdlog.h>
@@ -6,6 +6,7 @@
 #include "calib/rig.h"
 #include "host/core/output_path.h"
 #include "host/outputs/reconstruction_files.h"
+#include "host/pipeline/reconstruct_summary.h"
 #include "host/transport/transport_file.h"
 
 namespace rfrecon::pipeline {
@@ -26,6 +27,11 @@ ReconstructRun reconstruct_scan(const ReconstructRequest& request, std::vector<c
   run.depth = depth::reconstruct_depth(transport, rig, request.rig.string(), request.depth, devices, programs);
   run.depth.summary["transport_file"] = request.transport.string();
   run.depth.summary["calibration_file"] = request.rig.string();
+  run.depth.summary["camera"] = camera_intrinsics_json(rig);
+  run.depth.summary["options"] = reconstruct_options_json(request, devices, entries);
+  if (!transport.white.empty()) {
+    run.depth.maps.white = cv::Mat(transport.white, true).reshape(1, transport.setup.camera_size.height);
+  }
   outputs::write_reconstruction(run.depth.maps, run.depth.summary, request.out_dir, request.force);
   return run;
 }

@@ -17,7 +17,7 @@ struct ReconstructRequest {
 };
 
 struct ReconstructRun {
-  depth::DepthRun depth;  // summary with transport_file and calibration_file added
+  depth::DepthRun depth;  // summary with transport_file, calibration_file, camera (intrinsics) and options added
   int camera_pixels = 0;
 };
 

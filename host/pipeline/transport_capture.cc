@@ -1,7 +1,9 @@
 // Capture to T.h5: transport stage, file writing and the summary JSON.
 #include "host/pipeline/transport_capture.h"
 
+#include <algorithm>
 #include <optional>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -11,6 +13,7 @@
 #include "host/core/limits.h"
 #include "host/core/output_path.h"
 #include "host/core/stage_clock.h"
+#include "host/pipeline/transport_maps.h"
 #include "host/transport/transport_file.h"
 
 namespace rfrecon::pipeline {
@@ -18,14 +21,17 @@ namespace rfrecon::pipeline {
 TransportFileRun transport_capture(const TransportRequest& request, std::vector<cl::DeviceContext>& devices,
                                    cl::ProgramCache& programs) {
   request.entries.check_device_count(devices.size());
-  const auto manifest = transport::open_capture(request.capture_dir, request.source.layout,
-                                                request.source.projector_size, request.source.frame_paths);
+  const auto manifest =
+      transport::open_capture(request.capture_dir, request.source.layout, request.source.projector_size,
+                              request.source.frame_paths, request.source.bit_depth);
   const auto inputs = capture::capture_files(request.capture_dir, manifest);
   const OutputPath output{request.output, "--output", request.force};
   const OutputPath summary_output{request.summary, "--summary", request.force};
+  const OutputPath maps_output{request.maps, "--maps", request.force};
   check_output_file(output, inputs);
   if (!request.summary.empty()) check_output_file(summary_output, inputs);
-  check_distinct_outputs({output, summary_output});
+  if (!request.maps.empty()) check_output_directory(maps_output, inputs);
+  check_distinct_outputs({output, summary_output, maps_output});
 
   const double camera_pixels = static_cast<double>(manifest.camera_size.area());
   check_memory(camera_pixels * (2.0 * 8.0 * request.setup.entries_per_pixel + 64.0),
@@ -34,14 +40,21 @@ TransportFileRun transport_capture(const TransportRequest& request, std::vector<
   TransportFileRun file_run;
   file_run.run = transport::compute_transport_on_devices(request.capture_dir, manifest, request.setup, devices,
                                                          programs, request.entries, request.readers);
-  for (const auto flags : file_run.run.transport.flags) {
-    file_run.decoded_pixels += (flags & transport::kFlagValid) != 0 ? 1 : 0;
-  }
-  if (file_run.decoded_pixels == 0) {
+  file_run.outcomes = transport::count_outcomes(file_run.run.transport);
+  const auto& flags = file_run.run.transport.flags;
+  // Dot frames give correspondences around whatever code a pixel has, so a Gray code that no pixel decodes leaves
+  // nothing to trust either.
+  const bool gray_decoded =
+      std::any_of(flags.begin(), flags.end(), [](std::uint8_t f) { return (f & transport::kFlagValid) != 0; });
+  if (file_run.decoded_pixels() == 0 || !gray_decoded) {
+    // The capture checks often know why (too dark, saturated, a gamma left on): they go into the message.
+    std::string findings;
+    for (const auto& finding : file_run.run.checks.findings) findings += " Capture check: " + finding.message + ".";
     throw ProcessingError(request.capture_dir.string() +
                           ": no camera pixel decoded (every Gray code pattern reads like its inverse, or nothing is "
                           "lit above --black-threshold); check that each pattern and its inverse are different "
-                          "captures of a lit scene. Nothing was written.");
+                          "captures of a lit scene." +
+                          findings + " Nothing was written.");
   }
   AtomicFile t_file(request.output);
   StageClock clock;
@@ -54,15 +67,28 @@ TransportFileRun transport_capture(const TransportRequest& request, std::vector<
     nlohmann::json summary = {{"command", "transport"},
                               {"output", request.output.string()},
                               {"camera_pixels", file_run.run.transport.camera_pixels()},
-                              {"decoded_pixels", file_run.decoded_pixels},
+                              {"decoded_pixels", file_run.decoded_pixels()},
                               {"total_seconds", file_run.total_seconds},
-                              {"schedule", file_run.run.schedule}};
+                              {"schedule", file_run.run.schedule},
+                              {"capture_checks", capture::to_json(file_run.run.checks)}};
+    for (std::size_t i = 0; i < transport::kPixelOutcomes; ++i) {
+      summary["pixels"][transport::outcome_name(static_cast<transport::PixelOutcome>(i))] = file_run.outcomes[i];
+    }
+    if (const auto& gray = file_run.run.gray_decision) {
+      summary["pixels"]["decoded_between_codes"] = gray->between_codes;
+    }
     for (const auto& timing : file_run.run.timings) summary["stage_seconds"][timing.stage] = timing.seconds;
     summary_file.emplace(request.summary);
     summary_file->write(summary.dump(2) + "\n");
   }
+  std::optional<StagingDirectory> maps_directory;
+  if (!request.maps.empty()) {
+    maps_directory.emplace(request.maps, request.force);
+    write_transport_maps(file_run.run.transport, file_run.outcomes, maps_directory->path());
+  }
   t_file.commit();
   if (summary_file) summary_file->commit();
+  if (maps_directory) maps_directory->commit();
   return file_run;
 }
 

@@ -34,6 +34,9 @@ class TransportAccumulator {
 // The bit mask of Gray bit `bit` (0 = most significant) in an axis code word.
 std::uint32_t gray_bit_mask(const TransportSetup& setup, GrayAxis axis, int bit);
 
+// The binary number of a Gray code word.
+std::uint32_t gray_to_binary(std::uint32_t gray);
+
 // A dot frame's offsets lie in [0, s), as host/capture/protocol.h makes them; std::invalid_argument otherwise.
 void check_dot_offsets(const TransportSetup& setup, int offset_x, int offset_y);
 
@@ -41,8 +44,8 @@ void check_dot_offsets(const TransportSetup& setup, int offset_x, int offset_y);
 // other spacing but 0 (Gray code only) is a ProcessingError naming it and the supported ones.
 void check_kernel_dot_spacing(int dot_spacing);
 
-// An automatic noise threshold (setup.thresholds.noise <= 0) is resolved for an 8-bit camera here; compute_transport
-// resolves it for the capture's bit depth before it makes an accumulator.
+// Automatic white and noise thresholds (<= 0) are resolved for an 8-bit camera here; compute_transport
+// resolves them for the capture's bit depth before it makes an accumulator.
 std::unique_ptr<TransportAccumulator> make_reference_accumulator(TransportSetup setup);
 
 // Kernels of kernels/transport/decode.cl and compress.cl; the ELL state stays on the device until finish(). Dot

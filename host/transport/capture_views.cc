@@ -11,7 +11,8 @@ namespace rfrecon::transport {
 CaptureViews view_capture(const std::filesystem::path& capture_dir, const CaptureSource& source,
                           std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
   CaptureViews views;
-  const auto manifest = open_capture(capture_dir, source.layout, source.projector_size, source.frame_paths);
+  const auto manifest =
+      open_capture(capture_dir, source.layout, source.projector_size, source.frame_paths, source.bit_depth);
   TransportSetup setup;
   // The board's dark squares (albedo about 0.05) read below the default black threshold and would count as shadow:
   // without T entries, T^T 1 would have them speckled and partly unreached, and filling those gaps pulls bright
@@ -20,6 +21,7 @@ CaptureViews view_capture(const std::filesystem::path& capture_dir, const Captur
   setup.thresholds.black = default_noise_threshold(manifest.bit_depth);
   const auto run = compute_transport_on_devices(capture_dir, manifest, setup, devices, programs, cl::EntryChoice());
   views.schedule = run.schedule;
+  views.checks = run.checks;
   const auto& transport = run.transport;
 
   for (std::size_t i = 0; i < manifest.frames.size(); ++i) {

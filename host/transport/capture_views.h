@@ -8,6 +8,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "host/capture/capture_checks.h"
 #include "host/capture/manifest.h"
 #include "host/cl/device_context.h"
 #include "host/cl/program_cache.h"
@@ -21,6 +22,7 @@ struct CaptureSource {
   std::string layout;       // "" or "manifest" (manifest.json), or "opencv-graycode"
   cv::Size projector_size;  // needed for opencv-graycode
   capture::FramePaths frame_paths = capture::FramePaths::kInsideCapture;  // kAnywhere: --allow-outside-frames
+  int bit_depth = 0;  // opencv-graycode: the camera's bits per sample, 0 for the files' own
 };
 
 struct CaptureViews {
@@ -29,6 +31,7 @@ struct CaptureViews {
   cv::Mat dual_reached;                    // CV_8U: 255 where T has an entry for the projector pixel
   cv::Mat correspondence;                  // CV_32FC2: camera pixel -> projector (x, y), NaN where unknown
   std::vector<sched::RunReport> schedule;  // the transport and dual stages per device
+  capture::CaptureCheckResult checks;      // the capture checks on the pose's frames (host/capture/capture_checks.h)
 };
 
 // Builds T for the capture in `capture_dir` on `devices` (K = 8, default thresholds but a black threshold at the noise

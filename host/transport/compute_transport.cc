@@ -12,6 +12,7 @@
 #include "host/core/progress.h"
 #include "host/core/stage_clock.h"
 #include "host/sched/block_runner.h"
+#include "host/transport/gray_decision.h"
 #include "host/transport/gray_subpixel.h"
 
 namespace rfrecon::transport {
@@ -20,13 +21,16 @@ namespace fs = std::filesystem;
 using capture::PatternKind;
 
 capture::CaptureManifest open_capture(const fs::path& capture_dir, const std::string& layout, cv::Size projector_size,
-                                      capture::FramePaths frame_paths) {
-  if (layout.empty() || layout == "manifest") return capture::read_manifest(capture_dir, frame_paths);
+                                      capture::FramePaths frame_paths, int bit_depth) {
+  if (layout.empty() || layout == "manifest") {
+    if (bit_depth != 0) throw UsageError("--bit-depth is for --layout opencv-graycode; a manifest declares bit_depth");
+    return capture::read_manifest(capture_dir, frame_paths);
+  }
   if (layout != "opencv-graycode") {
     throw InputError("unknown capture layout '" + layout + "' (expected 'manifest' or 'opencv-graycode')");
   }
   if (projector_size.empty()) throw InputError("--layout opencv-graycode needs --projector WxH");
-  return capture::manifest_from_opencv_layout(capture_dir, projector_size);
+  return capture::manifest_from_opencv_layout(capture_dir, projector_size, bit_depth);
 }
 
 namespace {
@@ -179,7 +183,10 @@ OpenedCapture open_frames(const capture::FrameSource& frames, capture::CaptureMa
     throw InputError("all-dark capture: no pixel of " + frames.describe(manifest, opened.index.white) +
                      " is brighter than " + frames.describe(manifest, opened.index.black) + " by more than " +
                      "the black threshold " + std::to_string(setup.thresholds.black) + " (maximum difference " +
-                     std::to_string(brightest) + ")");
+                     std::to_string(brightest) + ")" +
+                     (manifest.bit_depth == 16 ? "; if the 16-bit files hold 10- or 12-bit data, declare bit_depth "
+                                                 "(--bit-depth with --layout opencv-graycode)"
+                                               : ""));
   }
   setup.camera_size = manifest.camera_size;
   setup.projector_size = manifest.projector_size;
@@ -190,32 +197,65 @@ OpenedCapture open_frames(const capture::FrameSource& frames, capture::CaptureMa
   return opened;
 }
 
-// Sub-pixel correspondences of Gray-code-only captures (GraySubpixel), on the host for both paths alike; captures
-// with the dot grid keep their dot centroids. Timed as the stage "subpixel".
+// Which pixels of Gray-code-only captures are decoded (GrayDecision) and their sub-pixel correspondences
+// (GraySubpixel), on the host for both paths alike; captures with the dot grid keep their dot centroids. Timed as
+// the stage "subpixel".
 class SubpixelGray {
  public:
-  SubpixelGray(const TransportSetup& setup, StageClock& clock) : clock_(clock) {
-    if (setup.dot_spacing == 0) gray_.emplace(setup.camera_size);
+  SubpixelGray(const OpenedCapture& capture, StageClock& clock) : clock_(clock) {
+    if (capture.setup.dot_spacing != 0) return;
+    decision_.emplace(capture.white, capture.black);
+    gray_.emplace(capture.setup.camera_size);
   }
   // `frames` as the accumulators take them (setup.frame_depth): raw ones are made linear first.
   void add(const Step& step, const std::vector<cv::Mat>& frames, const TransportSetup& setup) {
     if (!gray_ || step.kind != Step::Kind::kGrayPair) return;
     clock_.time("subpixel", [&] {
-      if (setup.frame_depth == CV_32F) {
-        gray_->add_gray_pair(step.axis, frames[0], frames[1]);
-      } else {
-        gray_->add_gray_pair(step.axis, capture::linearize_samples(frames[0], setup.samples),
-                             capture::linearize_samples(frames[1], setup.samples));
-      }
+      const bool linear = setup.frame_depth == CV_32F;
+      const cv::Mat pattern = linear ? frames[0] : capture::linearize_samples(frames[0], setup.samples);
+      const cv::Mat inverse = linear ? frames[1] : capture::linearize_samples(frames[1], setup.samples);
+      decision_->add_gray_pair(step.axis, gray_bit_mask(setup, step.axis, step.bit), pattern, inverse);
+      gray_->add_gray_pair(step.axis, pattern, inverse);
     });
   }
-  void refine(CompressedTransport& transport) const {
-    if (gray_) clock_.time("subpixel", [&] { gray_->refine(transport); });
+  // The decision's counts for Gray-code-only captures.
+  std::optional<GrayDecisionCounts> refine(CompressedTransport& transport) const {
+    if (!gray_) return std::nullopt;
+    return clock_.time("subpixel", [&] {
+      const GrayDecisionCounts counts = decision_->decide(transport);
+      gray_->refine(transport);
+      return counts;
+    });
   }
 
  private:
   StageClock& clock_;
+  std::optional<GrayDecision> decision_;
   std::optional<GraySubpixel> gray_;
+};
+
+// The capture checks fed the frames as they are read: white and black at once, then each step's frames. Timed as the
+// stage "checks".
+class CheckedFrames {
+ public:
+  CheckedFrames(const OpenedCapture& capture, StageClock& clock) : checks_(capture.manifest), clock_(clock) {
+    clock_.time("checks", [&] {
+      checks_.add(capture.index.white, capture.white);
+      checks_.add(capture.index.black, capture.black);
+    });
+  }
+  void add(const Step& step, const std::vector<cv::Mat>& frames) {
+    clock_.time("checks", [&] {
+      for (std::size_t i = 0; i < step.frames.size(); ++i) checks_.add(step.frames[i], frames[i]);
+    });
+  }
+  capture::CaptureCheckResult finish() const {
+    return clock_.time("checks", [&] { return checks_.finish(); });
+  }
+
+ private:
+  capture::CaptureChecks checks_;
+  StageClock& clock_;
 };
 
 // How the Gray and dot frames are loaded for accumulators of `setup`.
@@ -330,7 +370,8 @@ TransportRun compute_transport(const capture::FrameSource& frames, capture::Capt
   };
   const OpenedCapture capture = open_frames(frames, std::move(manifest), setup, load);
   auto accumulator = clock.time("setup", [&] { return make_accumulator(capture.setup); });
-  SubpixelGray subpixel(capture.setup, clock);
+  SubpixelGray subpixel(capture, clock);
+  CheckedFrames checks(capture, clock);
   TransportRun run;
   for (const Step& step : plan_steps(capture.index, capture.manifest)) {
     if (step.kind == Step::Kind::kFinish) {
@@ -341,8 +382,11 @@ TransportRun compute_transport(const capture::FrameSource& frames, capture::Capt
     for (const std::size_t i : step.frames) step_frames.push_back(load(capture.manifest, i));
     clock.time(step.stage(), [&] { apply(*accumulator, step, step_frames, capture.white, capture.black); });
     subpixel.add(step, step_frames, capture.setup);
+    checks.add(step, step_frames);
   }
-  subpixel.refine(run.transport);
+  run.gray_decision = subpixel.refine(run.transport);
+  run.transport.white.assign(capture.white.begin<float>(), capture.white.end<float>());
+  run.checks = checks.finish();
   run.timings = clock.timings();
   return run;
 }
@@ -388,13 +432,15 @@ TransportRun compute_transport_on_devices(const capture::FrameSource& frames, ca
   std::transform(steps.begin(), steps.end(), groups.begin(), [](const Step& step) { return step.frames; });
   capture::FrameReadAhead read_ahead(frames, capture.manifest, std::move(groups), readers,
                                      2 * static_cast<std::size_t>(readers), frame_form(capture.setup));
-  SubpixelGray subpixel(capture.setup, clock);
+  SubpixelGray subpixel(capture, clock);
+  CheckedFrames checks(capture, clock);
   for (std::size_t l = 0; l < launches.size(); ++l) {
     std::vector<cv::Mat> launch_frames;
     for (std::size_t i = launches[l].first; i < launches[l].end; ++i) {
       std::vector<cv::Mat> step_frames = clock.time("read frames", [&] { return read_ahead.take(i); });
       progress.advance(steps[i].frames.size());
       subpixel.add(steps[i], step_frames, capture.setup);
+      checks.add(steps[i], step_frames);
       launch_frames.insert(launch_frames.end(), step_frames.begin(), step_frames.end());
     }
     task.set_frames(std::move(launch_frames));
@@ -403,7 +449,9 @@ TransportRun compute_transport_on_devices(const capture::FrameSource& frames, ca
   }
   TransportRun run;
   run.transport = clock.time("finalize", [&] { return task.assemble(); });
-  subpixel.refine(run.transport);
+  run.gray_decision = subpixel.refine(run.transport);
+  run.transport.white.assign(capture.white.begin<float>(), capture.white.end<float>());
+  run.checks = checks.finish();
   run.timings = clock.timings();
   run.schedule = runner.reports();
   return run;

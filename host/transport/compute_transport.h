@@ -4,31 +4,37 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "host/capture/capture_checks.h"
 #include "host/capture/frame_source.h"
 #include "host/capture/manifest.h"
 #include "host/cl/entry_choice.h"
 #include "host/core/stage_clock.h"
 #include "host/sched/report.h"
 #include "host/transport/accumulator.h"
+#include "host/transport/gray_decision.h"
 
 namespace rfrecon::transport {
 
 // Opens a capture directory: DIR/manifest.json when layout is empty or "manifest"; for "opencv-graycode", the
-// files sorted by name as OpenCV GrayCodePattern's sequence for `projector_size`
+// files sorted by name as OpenCV GrayCodePattern's sequence for `projector_size`, of `bit_depth` bits (0: the files')
 // (capture::manifest_from_opencv_layout). Throws InputError on an unknown layout or a missing projector size.
 capture::CaptureManifest open_capture(const std::filesystem::path& capture_dir, const std::string& layout,
                                       cv::Size projector_size,
-                                      capture::FramePaths frame_paths = capture::FramePaths::kInsideCapture);
+                                      capture::FramePaths frame_paths = capture::FramePaths::kInsideCapture,
+                                      int bit_depth = 0);
 
 struct TransportRun {
   CompressedTransport transport;
   // "read frames", "setup" (buffers, kernel builds; on devices "build programs" first, buffers within "decode"),
-  // "decode", "compress", "finalize", "subpixel" (Gray-code-only captures: host/transport/gray_subpixel.h)
+  // "decode", "compress", "finalize", "subpixel" (Gray-code-only captures: host/transport/gray_subpixel.h), "checks"
   std::vector<StageTiming> timings;
-  std::vector<sched::RunReport> schedule;  // per stage and device (compute_transport_on_devices only)
+  std::vector<sched::RunReport> schedule;           // per stage and device (compute_transport_on_devices only)
+  std::optional<GrayDecisionCounts> gray_decision;  // Gray-code-only captures: how their lit pixels were decided
+  capture::CaptureCheckResult checks;               // the capture checks on the frames read (capture/capture_checks.h)
 };
 
 using AccumulatorFactory = std::function<std::unique_ptr<TransportAccumulator>(const TransportSetup&)>;

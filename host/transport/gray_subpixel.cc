@@ -131,8 +131,8 @@ struct Window {
   const GraySubpixelOptions& options;
 
   // Points within radius_px (in x and y) of pixel (x, y) whose value lies within 1 + max_slope * distance of the
-  // pixel's code `own` (the others belong to another surface, across an occlusion edge), their values less `own`,
-  // weighted by distance. The weights come in a loop of their own: a call to exp among the other arithmetic made
+  // pixel's decoded position `own` (the others belong to another surface, across an occlusion edge), their values less
+  // `own`, weighted by distance. The weights come in a loop of their own: a call to exp among the other arithmetic made
   // the compiler keep every other value in memory around it.
   void gather(int x, int y, double own, BoundaryPoints& points) const {
     const int r = options.radius_px;
@@ -218,8 +218,7 @@ void GraySubpixel::refine(CompressedTransport& transport) const {
           const std::size_t c = static_cast<std::size_t>(y) * width + x;
           float& out = transport.correspondence[2 * c + axis];
           if ((transport.flags[c] & kFlagValid) == 0 || std::isnan(out)) continue;
-          const double own = code[c];
-          out = static_cast<float>(own);  // exact, where the accumulators' centroid may be off by an ulp
+          const double own = out;  // the decision's code, or a position between two adjacent codes
           window.gather(x, y, own, points);
           Moments all;
           for (std::size_t i = 0; i < points.size(); ++i) all.add(points, i);

@@ -18,9 +18,10 @@ struct GraySubpixelOptions {
   double weight_sigma_px = 1.0;  // with weight exp(-d^2 / (2 sigma^2)) at distance d camera px
   int min_points = 8;            // a fit needs at least this many boundary points
   double min_spread_px2 = 0.1;   // and their positions' weighted covariance eigenvalues at least this
-  double max_slope = 1.5;        // points farther than 1 + max_slope * d projector px from the pixel's code are dropped
+  double max_slope = 1.5;  // points farther than 1 + max_slope * d projector px from the pixel's position are dropped
   double max_residual_px = 0.5;  // the plane is fitted again without points farther than this from it
-  double max_code_offset_px = 1.0;  // and its value must lie this close to the pixel's integer code
+  double max_code_offset_px =
+      1.0;  // and its value this close to the pixel's decoded position (host/transport/gray_decision.h)
 };
 
 // Fed every Gray pair's whole frames, keeps per camera pixel and axis code only the crossing fraction of the bit
@@ -34,8 +35,9 @@ class GraySubpixel {
   // One Gray pair (linear continuous CV_32FC1 frames of the camera size), pairs and axes in any order.
   void add_gray_pair(GrayAxis axis, const cv::Mat& pattern, const cv::Mat& inverse);
 
-  // Sets each axis of the correspondence of kFlagValid pixels that have one (not NaN) to the fitted coordinate where
-  // the fit is trusted, else to the pixel's integer code exactly. Uses the final binary codes.
+  // Moves each axis of the correspondence of kFlagValid pixels that have one (not NaN: their code, or a position
+  // between two adjacent codes, host/transport/gray_decision.h) to the fitted coordinate where the fit is trusted.
+  // Uses the final binary codes.
   void refine(CompressedTransport& transport) const;
 
  private:

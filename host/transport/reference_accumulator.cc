@@ -21,6 +21,12 @@ std::uint32_t gray_bit_mask(const TransportSetup& setup, GrayAxis axis, int bit)
   return 1u << (bits - 1 - bit);
 }
 
+std::uint32_t gray_to_binary(std::uint32_t gray) {
+  std::uint32_t binary = 0;
+  for (; gray != 0; gray >>= 1) binary ^= gray;
+  return binary;
+}
+
 void check_dot_offsets(const TransportSetup& setup, int offset_x, int offset_y) {
   const int s = setup.dot_spacing;
   if (s <= 0 || offset_x < 0 || offset_x >= s || offset_y < 0 || offset_y >= s) {
@@ -58,12 +64,6 @@ const float* pixels(const cv::Mat& frame, const TransportSetup& setup) {
 cv::Mat linear_frame(const cv::Mat& frame, const TransportSetup& setup) {
   check_frame(frame, setup.frame_depth, setup);
   return setup.frame_depth == CV_32F ? frame : capture::linearize_samples(frame, setup.samples);
-}
-
-std::uint32_t gray_to_binary(std::uint32_t gray) {
-  std::uint32_t binary = 0;
-  for (; gray != 0; gray >>= 1) binary ^= gray;
-  return binary;
 }
 
 // x = offset + s * floor((coordinate - offset + floor(s / 2)) / s): the lit dot nearest to `coordinate`.

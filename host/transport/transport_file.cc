@@ -381,6 +381,11 @@ class Reader {
     }
   }
 
+  // Whether the file holds an object `name` (for the optional datasets).
+  bool has(const char* name) {
+    return guarded(std::string("dataset '") + name + "'", [&] { return file_.nameExists(name); });
+  }
+
   void close() {
     guarded("the HDF5 file", [&] { file_.close(); });
   }
@@ -481,6 +486,9 @@ void check_values(const Reader& reader, const CompressedTransport& transport, co
   reader.check(
       "direct_energy", shapes.pixels, energy,
       [&](std::size_t i) { return std::isfinite(energy[i]) && energy[i] >= 0.0f; }, "must be finite and >= 0");
+  const auto& white = transport.white;
+  reader.check(
+      "white", shapes.pixels, white, [&](std::size_t i) { return std::isfinite(white[i]); }, "must be finite");
 }
 
 }  // namespace
@@ -521,6 +529,7 @@ void write_transport(const CompressedTransport& transport, const fs::path& file,
     write_dataset(h5, "decoded", shapes.pairs, decoded, deflate_level);
     write_dataset(h5, "flags", shapes.pixels, transport.flags, deflate_level);
     write_dataset(h5, "direct_energy", shapes.pixels, transport.direct_energy, deflate_level);
+    if (!transport.white.empty()) write_dataset(h5, "white", shapes.pixels, transport.white, deflate_level);
     h5.close();
     output.write(memory.bytes());
     output.commit();
@@ -565,6 +574,7 @@ CompressedTransport read_transport(const fs::path& file) {
   const auto decoded = reader.dataset<std::uint32_t>("decoded", shapes.pairs);
   transport.flags = reader.dataset<std::uint8_t>("flags", shapes.pixels);
   transport.direct_energy = reader.dataset<float>("direct_energy", shapes.pixels);
+  if (reader.has("white")) transport.white = reader.dataset<float>("white", shapes.pixels);
   reader.close();
 
   check_values(reader, transport, decoded, shapes);

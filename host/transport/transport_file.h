@@ -24,15 +24,16 @@ inline constexpr std::int64_t kMaxTransportEntries = std::numeric_limits<std::in
 inline constexpr int kDefaultDeflateLevel = 1;
 
 // Writes `transport` to `file` through a temporary (AtomicFile): a failed write leaves no file. `deflate_level` (0 to
-// 9) is zlib's level for every dataset, 0 for none. Throws OutputError naming the file when it cannot be written
-// (its directory cannot be created, the disk is full).
+// 9) is zlib's level for every dataset, 0 for none; `white` is written when it is not empty. Throws OutputError naming
+// the file when it cannot be written (its directory cannot be created, the disk is full).
 void write_transport(const CompressedTransport& transport, const std::filesystem::path& file,
                      int deflate_level = kDefaultDeflateLevel);
 
 // Reads a T.h5: either returns a transport that passes every check of docs/formats.md or throws InputError naming
 // the file and the attribute or dataset at fault (and its first bad element): missing, truncated, failing a
 // checksum, not a transport file, of the wrong type or shape, sizes beyond the maxima above, or values outside their
-// ranges. Damage to a version 1 file's metadata (no checksums) can still crash HDF5 1.10 itself.
+// ranges. The dataset `white` is optional: a file without it reads with `white` empty. Damage to a version 1 file's
+// metadata (no checksums) can still crash HDF5 1.10 itself.
 CompressedTransport read_transport(const std::filesystem::path& file);
 
 }  // namespace rfrecon::transport

@@ -17,6 +17,7 @@ CompressedTransport make_empty_decoding(const TransportSetup& setup, CompressedT
   assign_on_huge_pages(transport.gray_y, n, 0U);
   assign_on_huge_pages(transport.flags, n, std::uint8_t{0});
   assign_on_huge_pages(transport.direct_energy, n, 0.0f);
+  transport.white.clear();
   // T's rows stay as the earlier transport left them when they have the size add_empty_rows gives them (it refills
   // them on every core); otherwise they go, their memory kept.
   const std::size_t slots = n * static_cast<std::size_t>(setup.entries_per_pixel);

@@ -17,6 +17,8 @@ namespace rfrecon::transport {
 
 // Per-camera-pixel flag bits (stored as uint8); values shared with the kernels (kernels/transport/flags.h).
 enum PixelFlag : std::uint8_t {
+  // Gray-code-only captures redecide valid and low contrast per pixel on the host (host/transport/gray_decision.h):
+  // valid includes pixels between two adjacent codes, low contrast is an axis left undecided.
   kFlagValid = RF_FLAG_VALID,               // lit, every Gray pair contrasted, coordinate inside the projector
   kFlagShadow = RF_FLAG_SHADOW,             // white - black <= black threshold
   kFlagLowContrast = RF_FLAG_LOW_CONTRAST,  // some Gray pair had |pattern - inverse| <= white threshold
@@ -30,13 +32,20 @@ inline bool compressible(std::uint8_t flags) { return RF_COMPRESSIBLE(flags); }
 using cl::KernelEntry;
 
 // Thresholds in linear camera units (1.0 = full scale, black level removed; host/capture/manifest.h).
-// Defaults: black 0.04 ~ 10 DN and white 0.02 ~ 5 DN of an 8-bit camera (OpenCV's GrayCodePattern uses
-// 40 and 5 DN); noise: automatic, default_noise_threshold() of the capture's bit depth.
+// Defaults: black 0.04 ~ 10 DN of an 8-bit camera (OpenCV's GrayCodePattern uses 40 DN); white and noise:
+// automatic, default_white_threshold() and default_noise_threshold() of the capture's bit depth. Gray-code-only
+// captures decide each bit against the pixel's own noise and contrast as well (host/transport/gray_decision.h).
 struct Thresholds {
   float black = 0.04f;  // a pixel is lit when white - black > black
-  float white = 0.02f;  // a Gray bit is trusted when |pattern - inverse| > white
+  float white = 0.0f;   // a Gray bit is trusted when |pattern - inverse| > white; <= 0: automatic
   float noise = 0.0f;   // transport entries (black subtracted) at or below are dropped; <= 0: automatic
 };
+
+// 4.5 DN at the camera's bit depth: the floor under which no Gray bit is trusted, however quiet the camera; on whole
+// digital numbers, pattern and inverse 5 DN apart are trusted as OpenCV's GrayCodePattern trusts them. Gray-code-only
+// captures raise it per pixel to 3 sigma of the pixel's measured noise and 2 % of its contrast
+// (host/transport/gray_decision.h).
+inline float default_white_threshold(int bit_depth) { return 4.5f / static_cast<float>((1 << bit_depth) - 1); }
 
 // 2.5 DN at the camera's bit depth (0.0098 at 8 bits, 0.0024 at 10 bits): about 3 sigma of 1 DN read noise in the
 // difference of a dot frame and the black frame. A fixed threshold in linear units would be either too low for
@@ -44,8 +53,9 @@ struct Thresholds {
 // biases the primal and dual images (T 1, T^T 1) low by a few per cent and the depth stage's slopes with them.
 inline float default_noise_threshold(int bit_depth) { return 2.5f / static_cast<float>((1 << bit_depth) - 1); }
 
-// `thresholds` with an automatic noise threshold (<= 0) replaced by default_noise_threshold(bit_depth).
+// `thresholds` with automatic white and noise thresholds (<= 0) replaced by their defaults at `bit_depth`.
 inline Thresholds resolve_thresholds(Thresholds thresholds, int bit_depth) {
+  if (thresholds.white <= 0.0f) thresholds.white = default_white_threshold(bit_depth);
   if (thresholds.noise <= 0.0f) thresholds.noise = default_noise_threshold(bit_depth);
   return thresholds;
 }
@@ -87,6 +97,7 @@ struct CompressedTransport {
   std::vector<std::uint32_t> gray_y;  // N decoded projector row
   std::vector<std::uint8_t> flags;    // N PixelFlag bits
   std::vector<float> direct_energy;   // N sum of all entries above noise in the window (kept or not)
+  std::vector<float> white;           // N linear white frame (1 = full scale, black level off); empty: unknown
 
   std::size_t camera_pixels() const { return static_cast<std::size_t>(setup.camera_size.area()); }
   std::size_t projector_pixels() const { return static_cast<std::size_t>(setup.projector_size.area()); }

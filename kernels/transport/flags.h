@@ -11,7 +11,8 @@
 
 // Pixels the dot-grid compression uses: lit and in range. Low-contrast pixels are included: their one undecided
 // Gray bit moves the coarse coordinate by at most one projector pixel, and the s x s window (s >= 3) around it
-// still holds the spot. Gray-code-only captures use RF_FLAG_VALID pixels only.
+// still holds the spot. Gray-code-only captures use RF_FLAG_VALID pixels only, after the host redecides both flags
+// from each pixel's noise (host/transport/gray_decision.h).
 #define RF_COMPRESSIBLE(flags) (((flags) & (RF_FLAG_SHADOW | RF_FLAG_OUT_OF_RANGE)) == 0)
 
 #endif  // RFRECON_KERNELS_TRANSPORT_FLAGS_H

@@ -110,6 +110,10 @@ TEST_F(BouguetTest, StereoPoseMatchesTheToolbox) {
   RecordProperty("stereo_rms_px", std::to_string(result.rig.rms));
   RecordProperty("left_fx_joint", std::to_string(result.rig.camera_matrix.at<double>(0, 0)));
   RecordProperty("right_fx_joint", std::to_string(result.rig.projector_matrix.at<double>(0, 0)));
+  RecordProperty("stereo_rms_all_corners_px", std::to_string(result.rms_all_px));
+  std::string gating;
+  for (const auto& decision : result.gating) gating += decision.describe() + "; ";
+  RecordProperty("gating", gating);
   const cv::Vec3d published(-99.80198, 1.12443, 0.05041);
   const cv::Vec3d sigma(0.14200, 0.11352, 0.49773);
   for (int i = 0; i < 3; ++i) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/calib3d.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "calib/corner_comparison.h"
 #include "calib/rig.h"
@@ -133,6 +134,14 @@ TEST_F(CalibrationAccuracyTest, ReportedUncertaintyCoversTheError) {
                            "coverage_projector.png", "errors.png"}) {
     EXPECT_TRUE(fs::exists(kPoses / "estimated" / "rig_report" / file)) << file;
   }
+  // The residual fields are drawn over each device's image, at its size; the rendered poses need no gating.
+  for (const auto& [file, size] : {std::pair{"residual_field_camera.png", estimated_.camera_size},
+                                   std::pair{"residual_field_projector.png", estimated_.projector_size}}) {
+    const cv::Mat field = cv::imread((kPoses / "estimated" / "rig_report" / file).string(), cv::IMREAD_COLOR);
+    ASSERT_FALSE(field.empty()) << file;
+    EXPECT_EQ(field.size(), size) << file;
+  }
+  EXPECT_TRUE(report.at("gating").at("decisions").empty()) << report.at("gating").dump();
 }
 
 // The corners `calibrate` found (its report's corners.json) against the rendered board's true corners projected with

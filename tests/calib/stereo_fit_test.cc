@@ -1,6 +1,7 @@
 // The stereo adjustment's uncertainty and pose-set checks on exactly known synthetic corners: the standard
 // deviations it reports must match the spread of its estimates over noise draws, poor pose sets get warnings, dense
-// correspondences shrink the errors the corners leave, and misdecoded ones are left out.
+// correspondences shrink the errors the corners leave, misdecoded ones are left out, and gating drops a corrupted
+// corner and down-weights a noisy pose.
 #include <algorithm>
 #include <random>
 #include <string>
@@ -10,6 +11,7 @@
 
 #include "calib/board_detection.h"
 #include "calib/pose_diversity.h"
+#include "calib/report_files.h"
 #include "calib/stereo_calibration.h"
 
 namespace rfrecon::calib {
@@ -201,6 +203,63 @@ TEST(StereoFitTest, ExactDenseCorrespondencesLeaveNoResidualOnceOutliersAreOut) 
   EXPECT_NEAR(cv::norm(result.rig.T), cv::norm(kT), 1e-4);
   ASSERT_EQ(result.fit.dense_view_rms_px.size(), 10u);
   EXPECT_LT(result.fit.dense_view_rms_px[0], 1e-4);
+}
+
+// One camera corner moved by 5 px (pose 3, corner 20) among 0.05 px of noise: gating drops it, names it in the
+// report with its residual and z-score, and the rig is as good as without the bad corner (fx within 3 reported
+// deviations of the truth and 0.02 px of the clean observations'); clean observations lose no corner and no pose is
+// down-weighted.
+TEST(GatingTest, CorruptedCornerIsDroppedAndNamed) {
+  std::mt19937 rng(5);
+  auto views = observe(board_poses(12, 40.0), 0.05, rng);
+  const auto clean = calibrate_stereo(views, kBoard, kCameraSize, kProjectorSize);
+  EXPECT_TRUE(clean.gating.empty()) << gating_json(clean.gating_thresholds, clean.gating).dump();
+  views[3].camera_corners[20] += cv::Point2f(4.0f, -3.0f);
+  const auto result = calibrate_stereo(views, kBoard, kCameraSize, kProjectorSize);
+  ASSERT_EQ(result.gating.size(), 1u) << gating_json(result.gating_thresholds, result.gating).dump();
+  const GatingDecision& decision = result.gating[0];
+  EXPECT_EQ(decision.view, "pose_3");
+  EXPECT_EQ(decision.series, "camera");
+  EXPECT_EQ(decision.corner, 20);
+  EXPECT_NEAR(decision.residual_px, 5.0, 0.3);
+  EXPECT_GT(decision.z, result.gating_thresholds.corner_z);
+  EXPECT_EQ(decision.weight, 0.0);
+  ASSERT_EQ(result.camera_dropped.size(), 12u);
+  EXPECT_EQ(result.camera_dropped[3].at(20), 1);
+  // The stereo RMS over the kept corners is the noise's (0.05 px per axis: 0.071 px per point); over all, more.
+  EXPECT_NEAR(result.rig.rms, 0.05 * std::sqrt(2.0), 0.01);
+  EXPECT_GT(result.rms_all_px, result.rig.rms + 0.05);
+  EXPECT_NEAR(result.rig.camera_matrix.at<double>(0, 0), 800.0,
+              3.0 * result.rig.uncertainty.camera_intrinsics.at<double>(0));
+  EXPECT_NEAR(result.rig.camera_matrix.at<double>(0, 0), clean.rig.camera_matrix.at<double>(0, 0), 0.02);
+  const auto report = stereo_report_json(result).at("gating").at("decisions");
+  ASSERT_EQ(report.size(), 1u);
+  EXPECT_EQ(report[0].at("view"), "pose_3");
+  EXPECT_EQ(report[0].at("corner"), 20);
+  EXPECT_EQ(report[0].at("action"), "dropped");
+  EXPECT_NEAR(report[0].at("residual_px").get<double>(), 5.0, 0.3);
+}
+
+// A pose whose projector corners carry 0.5 px of noise among poses of 0.05 px is down-weighted by about the ratio of
+// the noise variances (0.01; accepted 0.003 to 0.03), and named; its corners are judged as weighted, so at most a
+// few of them are dropped.
+TEST(GatingTest, NoisyPoseIsDownWeighted) {
+  std::mt19937 rng(9);
+  auto views = observe(board_poses(12, 40.0), 0.05, rng);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  for (auto& c : views[7].projector_corners) c += noise_point(noise, rng);
+  const auto result = calibrate_stereo(views, kBoard, kCameraSize, kProjectorSize);
+  const auto pose =
+      std::find_if(result.gating.begin(), result.gating.end(), [](const GatingDecision& d) { return d.corner < 0; });
+  ASSERT_NE(pose, result.gating.end()) << gating_json(result.gating_thresholds, result.gating).dump();
+  EXPECT_EQ(pose->view, "pose_7");
+  EXPECT_EQ(pose->series, "projector");
+  EXPECT_GT(pose->z, result.gating_thresholds.pose_z);
+  EXPECT_GT(pose->weight, 0.003);
+  EXPECT_LT(pose->weight, 0.03);
+  EXPECT_LE(
+      std::count_if(result.gating.begin(), result.gating.end(), [](const GatingDecision& d) { return d.corner >= 0; }),
+      3);
 }
 
 // Few poses, small tilts and boards bunched in the middle of the image each get their warning; a good set none.

@@ -93,6 +93,11 @@ TEST_F(PlyTest, BadArgumentsAreRejectedAndNothingIsWritten) {
   EXPECT_THROW(write_point_cloud_ply(dir_ / "a.ply", "", maps.points, maps.normals, {{"q", cv::Mat(2, 3, CV_64F)}}),
                std::invalid_argument);
   EXPECT_THROW(write_point_cloud_ply(dir_ / "a.ply", "two\nlines", maps.points, maps.normals), std::invalid_argument);
+  EXPECT_THROW(write_point_cloud_ply(dir_ / "a.ply", "", maps.points, maps.normals, {{"red", maps.quality}}),
+               std::invalid_argument);
+  EXPECT_THROW(
+      write_point_cloud_ply(dir_ / "a.ply", "", maps.points, maps.normals, {}, cv::Mat(maps.points.size(), CV_32FC3)),
+      std::invalid_argument);
   EXPECT_TRUE(fs::is_empty(dir_));
 }
 

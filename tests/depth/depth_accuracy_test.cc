@@ -117,8 +117,10 @@ TEST(DepthAccuracy, GrayCodeOnlyCubeTriangulatesWithinHalfAPercent) {
   std::printf("Gray code only, triangulate: RMS %.4f mm = %.3f %%, coverage %.1f %%\n", evaluation.object.rms_mm, rms,
               evaluation.object.coverage_percent);
   EXPECT_LE(rms, 0.5);
-  // Pixels that mix two codes fail to decode and boundary rejection widens to 2 px: less coverage than with dots.
-  EXPECT_GT(evaluation.object.coverage_percent, 60.0);
+  // Pixels on a code boundary decode between two codes (measured 83.7 to 83.8 % over seeds 1 to 3, docs/accuracy.md;
+  // 69.4 % when they did not); boundary rejection is 2 px wide and the edge rule drops the pixels beside the cube's
+  // shadow and silhouette: less coverage than with dots.
+  EXPECT_GT(evaluation.object.coverage_percent, 78.0);
   // The reciprocity methods need the dot grid's full rows of T and say so.
   options.method = Method::kFused;
   try {

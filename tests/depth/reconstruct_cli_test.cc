@@ -49,6 +49,16 @@ TEST_F(ReconstructCliTest, EverythingMaskedIsAProcessingError) {
   EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
+// The edge correction reads T's white frame; this T has none (as one written before it was kept).
+TEST_F(ReconstructCliTest, EdgeCorrectionWithoutTheWhiteFrameIsAnInputError) {
+  const auto result =
+      testing::run_cli("reconstruct " + (dir_ / "T.h5").string() + " --calib " + (dir_ / "rig.yaml").string() + " -o " +
+                       (dir_ / "out").string() + " --edge-footprint 0.5");
+  EXPECT_EQ(result.exit_code, 3) << result.output;
+  EXPECT_NE(result.output.find("no white frame"), std::string::npos) << result.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
 TEST_F(ReconstructCliTest, CalibrationOfAnotherSizeIsAnInputError) {
   calib::write_rig(sim::true_rig(sim::builtin_scene("cube-anisotropic")), dir_ / "big.yaml");
   const auto result = reconstruct(dir_ / "big.yaml");

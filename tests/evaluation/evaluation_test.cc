@@ -2,6 +2,7 @@
 // scale, the report, compatibility with a real `simulate` output, and bad input named in the error.
 #include "host/evaluation/evaluation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -11,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "host/core/errors.h"
+#include "host/outputs/legend.h"
 #include "sim/simulate.h"
 #include "tests/common/temp_dir.h"
 #include "tests/evaluation/synthetic_truth.h"
@@ -98,8 +100,12 @@ TEST_F(EvaluationTest, WritesReportAndMapWithTheMapNamedRelativeToTheReport) {
   const auto report = nlohmann::json::parse(in);
   EXPECT_EQ(report["error_map"]["file"], "error_map.png");
   EXPECT_EQ(report["object_pixels"]["truth_pixels"], 580);
-  const cv::Mat map = cv::imread((root_ / "eval" / "error_map.png").string(), cv::IMREAD_UNCHANGED);
-  EXPECT_EQ(map.size(), cv::Size(synthetic::kWidth, synthetic::kHeight));
+  // The map at the top left, unchanged, and its legend to the right.
+  const cv::Mat file = cv::imread((root_ / "eval" / "error_map.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(file.size(), cv::Size(synthetic::kWidth + outputs::kLegendWidth,
+                                  std::max(synthetic::kHeight, outputs::kLegendMinHeight)));
+  const cv::Mat map = error_map(e);
+  EXPECT_EQ(cv::norm(file(cv::Rect(0, 0, map.cols, map.rows)), map, cv::NORM_INF), 0.0);
 }
 
 TEST_F(EvaluationTest, ErrorMapHasAFixedScaleOfOnePercentOfTheSize) {

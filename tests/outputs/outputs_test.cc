@@ -1,5 +1,6 @@
-// The reconstruction directory: float maps round-trip bit for bit, the PLY holds the valid pixels, previews follow
-// their documented colour rules, and a refused or failed write leaves nothing behind.
+// The reconstruction directory: float maps round-trip bit for bit, 3-channel TIFFs hold x first for any TIFF reader,
+// the PLY holds the valid pixels and the white frame's colours, previews follow their documented colour rules and
+// carry a legend, and a refused or failed write leaves nothing behind.
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -11,9 +12,11 @@
 #include <opencv2/imgproc.hpp>
 
 #include "host/core/errors.h"
+#include "host/outputs/legend.h"
 #include "host/outputs/reconstruction_files.h"
 #include "tests/common/ply_reader.h"
 #include "tests/common/temp_dir.h"
+#include "tests/common/tiff_reader.h"
 
 namespace rfrecon::outputs {
 namespace {
@@ -73,15 +76,16 @@ TEST_F(OutputsTest, MapsRoundTripBitForBitAndEveryFileIsThere) {
   const nlohmann::json summary{{"stage", "test"}, {"pixels", 1200}};
   write_reconstruction(written, summary, dir_ / "out", false);
   EXPECT_EQ(entries(dir_ / "out"),
-            (std::set<std::string>{"depth.tiff", "normals.tiff", "confidence.tiff", "points.ply", "depth.png",
-                                   "normals.png", "confidence.png", "summary.json"}));
+            (std::set<std::string>{"depth.tiff", "points.tiff", "normals.tiff", "confidence.tiff", "points.ply",
+                                   "depth.png", "normals.png", "confidence.png", "summary.json"}));
   EXPECT_EQ(entries(dir_), std::set<std::string>{"out"});  // no staging leftovers
 
   const Reconstruction read = read_reconstruction(dir_ / "out");
   expect_same(read.depth_mm, written.depth_mm, "depth");
+  expect_same(read.points_mm, written.points_mm, "points");
   expect_same(read.normals, written.normals, "normals");
   expect_same(read.confidence, written.confidence, "confidence");
-  EXPECT_TRUE(read.points_mm.empty());
+  EXPECT_TRUE(read.white.empty());
 
   std::ifstream in(dir_ / "out" / "summary.json");
   EXPECT_EQ(nlohmann::json::parse(in), summary);
@@ -106,6 +110,55 @@ TEST_F(OutputsTest, PointCloudHoldsTheValidPixelsWithConfidenceAsQuality) {
   EXPECT_EQ(ply.at(ply.count - 1, 8), 39.0f / 40.0f);
 }
 
+// As libtiff reads them (any reader but OpenCV): points.tiff and normals.tiff hold x, y, z in samples 0, 1, 2.
+TEST_F(OutputsTest, ThreeChannelTiffsHoldXFirstForAnyTiffReader) {
+  const Reconstruction r = plane();
+  write_reconstruction(r, {}, dir_ / "out", false);
+  const auto points = testing::read_float_tiff(dir_ / "out" / "points.tiff");
+  const auto normals = testing::read_float_tiff(dir_ / "out" / "normals.tiff");
+  for (const auto* image : {&points, &normals}) {
+    ASSERT_EQ(image->samples, 3);
+    ASSERT_EQ(image->width, 40u);
+    ASSERT_EQ(image->height, 30u);
+  }
+  for (int sample = 0; sample < 3; ++sample) {
+    EXPECT_EQ(points.at(30, 7, sample), r.points_mm.at<cv::Vec3f>(7, 30)[sample]) << sample;
+    EXPECT_TRUE(std::isnan(points.at(2, 7, sample))) << "no point: NaN";
+  }
+  // Normal (0.6, 0, -0.8).
+  EXPECT_EQ(normals.at(30, 7, 0), 0.6f);
+  EXPECT_EQ(normals.at(30, 7, 1), 0.0f);
+  EXPECT_EQ(normals.at(30, 7, 2), -0.8f);
+}
+
+// The white frame colours the PLY: grey, brighter where the white frame is brighter, linear 0.5 at sRGB's 0.7354
+// (IEC 61966-2-1) = 187.5 of 255; without a white frame the PLY has no colour properties.
+TEST_F(OutputsTest, PlyColoursFollowTheWhiteFrame) {
+  Reconstruction r = plane();
+  r.white.create(30, 40, CV_32F);
+  for (int y = 0; y < 30; ++y) {
+    for (int x = 0; x < 40; ++x) r.white.at<float>(y, x) = x / 40.0f;
+  }
+  write_reconstruction(r, {}, dir_ / "out", false);
+  const auto ply = testing::read_ply_vertices(dir_ / "out" / "points.ply");
+  ASSERT_THAT(ply.properties,
+              ::testing::ElementsAre("x", "y", "z", "nx", "ny", "nz", "u", "v", "quality", "red", "green", "blue"));
+  EXPECT_THAT(ply.types, ::testing::ElementsAre("float", "float", "float", "float", "float", "float", "float", "float",
+                                                "float", "uchar", "uchar", "uchar"));
+  float previous = -1.0f;
+  for (std::size_t v = 0; v < 36; ++v) {  // row 0: u = 4 .. 39, white 0.1 .. 0.975
+    EXPECT_EQ(ply.at(v, 9), ply.at(v, 10));
+    EXPECT_EQ(ply.at(v, 9), ply.at(v, 11));
+    EXPECT_GT(ply.at(v, 9), previous) << "u " << ply.at(v, 6);
+    previous = ply.at(v, 9);
+    if (ply.at(v, 6) == 20.0f) {
+      EXPECT_NEAR(ply.at(v, 9), 187.5, 1.0);
+    }
+  }
+  write_reconstruction(plane(), {}, dir_ / "plain", false);
+  EXPECT_EQ(testing::read_ply_vertices(dir_ / "plain" / "points.ply").properties.size(), 9u);
+}
+
 TEST_F(OutputsTest, PreviewsFollowTheirColourRules) {
   const Reconstruction r = plane();
   write_reconstruction(r, {}, dir_ / "out", false);
@@ -114,7 +167,8 @@ TEST_F(OutputsTest, PreviewsFollowTheirColourRules) {
   const cv::Mat confidence = cv::imread((dir_ / "out" / "confidence.png").string(), cv::IMREAD_UNCHANGED);
   for (const cv::Mat* image : {&depth, &normals, &confidence}) {
     ASSERT_EQ(image->type(), CV_8UC3);
-    ASSERT_EQ(image->size(), cv::Size(40, 30));
+    // The camera grid at the top left, the legend to its right.
+    ASSERT_EQ(image->size(), cv::Size(40 + kLegendWidth, kLegendMinHeight));
     EXPECT_EQ(image->at<cv::Vec3b>(10, 2), cv::Vec3b(0, 0, 0));  // no reconstruction: black
   }
   // The nearest depth (408 mm, below the 1st percentile) and farthest (507 mm, above the 99th) saturate to the two
@@ -125,6 +179,13 @@ TEST_F(OutputsTest, PreviewsFollowTheirColourRules) {
   cv::applyColorMap(ends, turbo, cv::COLORMAP_TURBO);
   EXPECT_EQ(depth.at<cv::Vec3b>(0, 4), turbo.at<cv::Vec3b>(0, 0));
   EXPECT_EQ(depth.at<cv::Vec3b>(29, 39), turbo.at<cv::Vec3b>(0, 1));
+  // The legend's colour bar shows both ends of the scale.
+  const cv::Mat legend = depth.colRange(40, depth.cols);
+  for (const cv::Vec3b& end : {turbo.at<cv::Vec3b>(0, 0), turbo.at<cv::Vec3b>(0, 1)}) {
+    cv::Mat matches;
+    cv::inRange(legend, cv::Scalar(end[0], end[1], end[2]), cv::Scalar(end[0], end[1], end[2]), matches);
+    EXPECT_GT(cv::countNonZero(matches), 0);
+  }
   // Normal (0.6, 0, -0.8): RGB = 255 (n + 1) / 2 = (204, 127.5, 25.5); +-1 for rounding the halves. Stored BGR.
   const cv::Vec3b n = normals.at<cv::Vec3b>(5, 20);
   EXPECT_NEAR(n[2], 204, 1);

@@ -1,5 +1,6 @@
 // `rfrecon patterns`, `transport` and `dual` run in process: a good capture gives T.h5 and images; bad captures fail
 // with an InputError naming the file and leave no T.h5 behind.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -15,6 +16,7 @@
 #include "host/cl/program_store.h"
 #include "host/cli/commands.h"
 #include "host/core/errors.h"
+#include "host/outputs/legend.h"
 #include "host/transport/transport_file.h"
 #include "tests/common/scoped_env.h"
 #include "tests/transport/synthetic_capture.h"
@@ -92,6 +94,56 @@ TEST_F(TransportCliTest, GoodCaptureGivesTransportAndDualAndPrimalImages) {
   }
   ASSERT_GT(count, primal_image.rows * primal_image.cols / 2);
   EXPECT_NEAR(sum / count, 0.8, 0.02);
+}
+
+// One count per outcome (docs/cli.md): they add up to the camera's pixels, "decoded" is exactly the pixels of T.h5
+// with a correspondence, and the maps show them on the camera grid; the console prints the same decoded count.
+TEST_F(TransportCliTest, OutcomeCountsAgreeWithTheCorrespondencesAndTheMaps) {
+  for (const int dot_spacing : {3, 0}) {
+    if (dot_spacing == 0) {
+      sequence_ = capture::make_protocol({scene_.projector_size, 0});
+      frames_ = testing::render_frames(scene_, sequence_, 0, 1.0, 9);
+      fs::remove_all(capture_);
+      manifest_ = testing::write_capture(capture_, scene_, sequence_, 0, frames_);
+    }
+    const fs::path summary = dir_.path() / "summary.json", maps = dir_.path() / "maps";
+    ::testing::internal::CaptureStdout();
+    run_cli({"transport", capture_.string(), "-o", output_.string(), "--summary", summary.string(), "--maps",
+             maps.string(), "--force"});
+    const std::string printed = ::testing::internal::GetCapturedStdout();
+    const auto transport = read_transport(output_);
+    std::size_t with_correspondence = 0;
+    for (std::size_t c = 0; c < transport.camera_pixels(); ++c) {
+      with_correspondence += std::isnan(transport.correspondence[2 * c]) ? 0 : 1;
+    }
+    ASSERT_GT(with_correspondence, transport.camera_pixels() / 2) << dot_spacing;
+    const auto json = nlohmann::json::parse(std::ifstream(summary));
+    std::size_t total = 0;
+    for (const auto& [name, count] : json.at("pixels").items()) {
+      if (name != "decoded_between_codes") total += count.get<std::size_t>();
+    }
+    EXPECT_EQ(total, transport.camera_pixels()) << dot_spacing;
+    EXPECT_EQ(json.at("pixels").at("decoded").get<std::size_t>(), with_correspondence) << dot_spacing;
+    EXPECT_EQ(json.at("decoded_pixels").get<std::size_t>(), with_correspondence) << dot_spacing;
+    EXPECT_EQ(json.at("pixels").contains("decoded_between_codes"), dot_spacing == 0);
+    EXPECT_THAT(printed, ::testing::HasSubstr(std::to_string(with_correspondence) + " of " +
+                                              std::to_string(transport.camera_pixels()) + " camera pixels decoded"));
+    for (const char* name : {"decoded.png", "outcomes.png"}) {
+      const cv::Mat map = cv::imread((maps / name).string(), cv::IMREAD_UNCHANGED);
+      ASSERT_FALSE(map.empty()) << name;
+      EXPECT_EQ(map.cols, scene_.camera_size.width + outputs::kLegendWidth) << name << ": the grid, then its legend";
+      EXPECT_EQ(map.rows, std::max(scene_.camera_size.height, outputs::kLegendMinHeight)) << name;
+    }
+    // decoded.png is black exactly where there is no correspondence.
+    const cv::Mat decoded = cv::imread((maps / "decoded.png").string(), cv::IMREAD_COLOR);
+    std::size_t coloured = 0;
+    for (int y = 0; y < scene_.camera_size.height; ++y) {
+      for (int x = 0; x < scene_.camera_size.width; ++x) coloured += decoded.at<cv::Vec3b>(y, x) != cv::Vec3b() ? 1 : 0;
+    }
+    // A correspondence at projector (0, 0) is black too: at most the pixels decoded there.
+    EXPECT_LE(coloured, with_correspondence) << dot_spacing;
+    EXPECT_GE(coloured + transport.camera_pixels() / 50, with_correspondence) << dot_spacing;
+  }
 }
 
 // The program cache (docs/performance.md#program-cache): a second run loads the programs the first compiled.
@@ -291,6 +343,22 @@ TEST_F(TransportCliTest, PatternsIdenticalToTheirInversesDecodeNothingAndWriteNo
   }
   EXPECT_NE(error_of<ProcessingError>({"transport", capture_.string(), "-o", output_.string()}).find("no camera pixel"),
             std::string::npos);
+  EXPECT_FALSE(fs::exists(output_));
+}
+
+// Every Gray frame a copy of the white frame: nothing decodes, and the capture checks' finding (a pattern and its
+// inverse add up to twice the white frame) says why in the error itself.
+TEST_F(TransportCliTest, NothingDecodedNamesTheCaptureChecksFindings) {
+  for (std::size_t i = 0; i < manifest_.frames.size(); ++i) {
+    const auto kind = manifest_.frames[i].pattern.kind;
+    if (kind == capture::PatternKind::kGrayColumn || kind == capture::PatternKind::kGrayRow) {
+      fs::copy_file(frame_path(0), frame_path(i), fs::copy_options::overwrite_existing);
+    }
+  }
+  const std::string message = error_of<ProcessingError>({"transport", capture_.string(), "-o", output_.string()});
+  EXPECT_THAT(message, ::testing::HasSubstr("no camera pixel"));
+  EXPECT_THAT(message, ::testing::HasSubstr("Capture check: "));
+  EXPECT_THAT(message, ::testing::HasSubstr("pattern + inverse"));
   EXPECT_FALSE(fs::exists(output_));
 }
 

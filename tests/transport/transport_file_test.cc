@@ -120,6 +120,33 @@ TEST_F(TransportFileTest, RoundTripPreservesEveryArrayAndAttribute) {
   EXPECT_TRUE(same_bits(read.direct_energy, written.direct_energy));
 }
 
+// The white frame is optional: a file without it reads with `white` empty, one with it gives it back bit for bit,
+// checksummed like every dataset, and a value that is not finite fails naming its element.
+TEST_F(TransportFileTest, TheWhiteFrameIsOptionalAndChecked) {
+  auto transport = small_transport();
+  ASSERT_TRUE(transport.white.empty());
+  write_transport(transport, file_);
+  EXPECT_TRUE(read_transport(file_).white.empty());
+
+  transport.white.resize(transport.camera_pixels());
+  for (std::size_t c = 0; c < transport.white.size(); ++c) transport.white[c] = 0.001f * static_cast<float>(c) - 0.01f;
+  write_transport(transport, file_);
+  EXPECT_TRUE(same_bits(read_transport(file_).white, transport.white));
+  {
+    H5::H5File h5(file_.string(), H5F_ACC_RDONLY);
+    const H5::DSetCreatPropList properties = h5.openDataSet("white").getCreatePlist();
+    unsigned flags = 0;
+    unsigned config = 0;
+    std::size_t value_count = 0;
+    EXPECT_NO_THROW(properties.getFilterById(H5Z_FILTER_FLETCHER32, flags, value_count, nullptr, 0, nullptr, config));
+  }
+  const std::string message = read_error([](CompressedTransport& t) {
+    t.white.assign(t.camera_pixels(), 0.5f);
+    t.white[24 * 4 + 10] = std::numeric_limits<float>::infinity();
+  });
+  EXPECT_TRUE(contains(message, "dataset 'white' element (4, 10) is inf")) << message;
+}
+
 TEST_F(TransportFileTest, EveryDatasetCarriesAChecksum) {
   write_transport(small_transport(), file_);
   H5::H5File h5(file_.string(), H5F_ACC_RDONLY);
