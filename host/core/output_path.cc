@@ -15,6 +15,8 @@ std::string quoted(const OutputPath& output) { return output.option + " " + outp
 
 const char* kind_of(fs::file_type type) {
   switch (type) {
+    case fs::file_type::regular:
+      return "a file";
     case fs::file_type::directory:
       return "a directory";
     case fs::file_type::character:
@@ -88,7 +90,9 @@ void check_output_directory(const OutputPath& output, const std::vector<fs::path
     throw UsageError(quoted(output) + " is " + kind_of(status.type()) + ", not a directory");
   }
   for (const auto& input : inputs) {
-    if (is_within(input, output.path)) {  // the directory itself, or anything under it
+    // The directory itself, or anything under it; an input the layout names but does not have (the manifest of an
+    // opencv-graycode capture) is not one to name.
+    if (fs::exists(input, ec) && is_within(input, output.path)) {
       throw UsageError(quoted(output) + " holds the input " + input.string() +
                        "; replacing the directory would delete it");
     }

@@ -191,14 +191,7 @@ GrayDecisionCounts GrayDecision::decide(CompressedTransport& transport) const {
     }
   });
   GrayDecisionCounts total;
-  for (const auto& counts : row_counts) {
-    total.lit += counts.lit;
-    total.decided += counts.decided;
-    total.between_codes += counts.between_codes;
-    total.undecided += counts.undecided;
-    total.out_of_range += counts.out_of_range;
-    total.no_signal += counts.no_signal;
-  }
+  for (const auto& counts : row_counts) total += counts;
   return total;
 }
 

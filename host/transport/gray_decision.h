@@ -33,6 +33,15 @@ struct GrayDecisionCounts {
   std::size_t out_of_range = 0;   // decoded outside the projector
   std::size_t no_signal = 0;      // decoded, but white - black at or below the noise threshold: no entry
   std::size_t decoded() const { return decided + between_codes; }
+  GrayDecisionCounts& operator+=(const GrayDecisionCounts& other) {
+    lit += other.lit;
+    decided += other.decided;
+    between_codes += other.between_codes;
+    undecided += other.undecided;
+    out_of_range += other.out_of_range;
+    no_signal += other.no_signal;
+    return *this;
+  }
 };
 
 // Fed every Gray pair (linear CV_32FC1 frames of the camera size, in any order), keeps per pixel and axis the two
