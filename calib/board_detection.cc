@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
@@ -10,6 +11,12 @@
 #include "host/core/percentile.h"
 
 namespace rfrecon::calib {
+
+std::string board_options_text(const BoardSpec& board) {
+  std::ostringstream text;
+  text << "--board " << board.cols << "x" << board.rows << " --square " << board.square_size;
+  return text.str();
+}
 
 std::vector<cv::Point3f> board_object_points(const BoardSpec& board) {
   std::vector<cv::Point3f> points;

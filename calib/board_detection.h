@@ -1,6 +1,7 @@
 // Checkerboard corner detection in camera images and in dual (projector-view) images.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -8,6 +9,14 @@
 #include "calib/rig.h"
 
 namespace rfrecon::calib {
+
+// The board as the command line gives it, for messages: "--board 9x6 --square 30".
+std::string board_options_text(const BoardSpec& board);
+
+// What to check when the board does not fit the images, for messages.
+inline constexpr const char* kBoardAdvice =
+    "check that --board gives the printed board's inner corners, COLSxROWS (its squares less one each way), --square "
+    "the side of one square in mm, and that the images show the whole board sharply";
 
 // The board's inner corners in its own plane (z = 0), in OpenCV's corner order (row by row), in mm.
 std::vector<cv::Point3f> board_object_points(const BoardSpec& board);

@@ -1,6 +1,11 @@
 // Camera calibration with cv::calibrateCamera and its checks and output.
 #include "calib/camera_calibration.h"
 
+#include <cstdio>
+#include <string>
+#include <tuple>
+#include <vector>
+
 #include <opencv2/calib3d.hpp>
 
 #include "calib/board_detection.h"
@@ -14,7 +19,8 @@ CameraCalibration calibrate_camera(const std::vector<BoardView>& views, const Bo
                                    const CalibrationOptions& options) {
   if (static_cast<int>(views.size()) < options.min_views) {
     throw ProcessingError("calibration needs at least " + std::to_string(options.min_views) +
-                          " views with the whole board found, got " + std::to_string(views.size()));
+                          " views with the whole board found, got " + std::to_string(views.size()) + " with " +
+                          board_options_text(board) + ": " + kBoardAdvice);
   }
   const auto object = board_object_points(board);
   std::vector<std::vector<cv::Point3f>> object_points(views.size(), object);
@@ -76,6 +82,48 @@ CameraCalibration calibrate_camera(const std::vector<BoardView>& views, const Bo
     result.warnings.push_back(std::move(warning));
   }
   return result;
+}
+
+namespace {
+// "fx 1479.84 +- 434.50 px (29 % of the value, limit 10 %)"
+std::string spread_text(const char* name, double value, double std_px, double share, const char* of) {
+  char text[160];
+  std::snprintf(text, sizeof(text), "%s %.2f +- %.2f px (%.0f %% of %s, limit %.0f %%)", name, value, std_px,
+                share * 100.0, of, kMaxIntrinsicsStdShare * 100.0);
+  return text;
+}
+}  // namespace
+
+void check_intrinsics_determined(const std::string& device, const cv::Mat& camera_matrix, const cv::Mat& intrinsics_std,
+                                 double rms_px, cv::Size image_size, const BoardSpec& board, std::size_t views) {
+  std::vector<std::string> evidence;
+  const double fx = camera_matrix.at<double>(0, 0);
+  const double fy = camera_matrix.at<double>(1, 1);
+  if (!(fx > 0.0 && fy > 0.0)) {
+    evidence.push_back("focal lengths fx " + std::to_string(fx) + ", fy " + std::to_string(fy) + " px (not positive)");
+  } else {
+    for (const auto& [name, value, std_px, scale, of] :
+         {std::tuple{"fx", fx, intrinsics_std.at<double>(0), fx, "the value"},
+          std::tuple{"fy", fy, intrinsics_std.at<double>(1), fy, "the value"},
+          std::tuple{"cx", camera_matrix.at<double>(0, 2), intrinsics_std.at<double>(2),
+                     static_cast<double>(image_size.width), "the image width"},
+          std::tuple{"cy", camera_matrix.at<double>(1, 2), intrinsics_std.at<double>(3),
+                     static_cast<double>(image_size.height), "the image height"}}) {
+      const double share = std_px / scale;
+      if (!(share <= kMaxIntrinsicsStdShare)) evidence.push_back(spread_text(name, value, std_px, share, of));
+    }
+  }
+  if (!(rms_px <= kMaxCalibrationRmsPx)) {
+    char text[96];
+    std::snprintf(text, sizeof(text), "reprojection RMS %.2f px (limit %.0f px)", rms_px, kMaxCalibrationRmsPx);
+    evidence.emplace_back(text);
+  }
+  if (evidence.empty()) return;
+  std::string listed;
+  for (const auto& item : evidence) listed += (listed.empty() ? "" : "; ") + item;
+  throw ProcessingError(board_options_text(board) + ": the " + device + " intrinsics from " + std::to_string(views) +
+                        " views are not determined (" + listed + "): " + kBoardAdvice +
+                        ", and that the poses are many and tilted differently");
 }
 
 void write_camera_calibration(const CameraCalibration& calibration, const std::filesystem::path& file) {

@@ -58,6 +58,18 @@ struct CalibrationOptions {
 CameraCalibration calibrate_camera(const std::vector<BoardView>& views, const BoardSpec& board, cv::Size image_size,
                                    const CalibrationOptions& options = {});
 
+// Beyond these the intrinsics are not determined (a board that does not fit the images, too few or too similar poses)
+// and no calibration file is written: a standard deviation of fx or fy over this share of its value, of cx or cy over
+// this share of the image's width or height, and a reprojection RMS over kMaxCalibrationRmsPx.
+inline constexpr double kMaxIntrinsicsStdShare = 0.1;
+inline constexpr double kMaxCalibrationRmsPx = 2.0;
+
+// Throws ProcessingError when `device`'s intrinsics (camera_matrix with one standard deviation each of fx, fy, cx, cy
+// in intrinsics_std, from `views` views) are not determined: a focal length that is not positive, or a value beyond
+// the limits above. The message names the board options, the views and the evidence, and says what to check.
+void check_intrinsics_determined(const std::string& device, const cv::Mat& camera_matrix, const cv::Mat& intrinsics_std,
+                                 double rms_px, cv::Size image_size, const BoardSpec& board, std::size_t views);
+
 // Writes an OpenCV FileStorage YAML (image_size, camera_matrix, dist_coeffs, their standard deviations, rms,
 // per_view_errors, views, board) atomically.
 void write_camera_calibration(const CameraCalibration& calibration, const std::filesystem::path& file);

@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include "calib/board_detection.h"
+#include "calib/board_overhang.h"
 #include "calib/report.h"
 #include "calib/report_files.h"
 #include "host/core/atomic_file.h"
@@ -44,6 +45,7 @@ CameraImagesRun calibrate_camera_from_images(const CameraImagesRequest& request)
   CameraImagesRun run;
   run.images = request.images.size();
   std::vector<BoardView> views;
+  std::vector<ViewOverhang> overhangs;
   cv::Size image_size;
   StagingDirectory report(request.report_dir, true);
   Progress progress("calibrate-camera", request.images.size(), "images");
@@ -60,12 +62,20 @@ CameraImagesRun calibrate_camera_from_images(const CameraImagesRequest& request)
     if (corners.empty()) {
       spdlog::warn("{}: board {}x{} not found, view skipped", file.string(), request.board.cols, request.board.rows);
     } else {
+      if (const auto overhang = board_overhang(image, request.board, corners); overhang.any()) {
+        overhangs.push_back({file.string(), overhang});
+      }
       views.push_back({name, std::move(corners)});
     }
     progress.advance();
   }
-  run.calibration =
-      keeping_report(report, [&] { return calibrate_camera(views, request.board, image_size, request.options); });
+  run.calibration = keeping_report(report, [&] {
+    check_board_fits(overhangs, request.board, views.size());
+    auto calibration = calibrate_camera(views, request.board, image_size, request.options);
+    check_intrinsics_determined("camera", calibration.camera_matrix, calibration.intrinsics_std, calibration.rms,
+                                image_size, request.board, views.size());
+    return calibration;
+  });
   for (const auto& warning : run.calibration.warnings) spdlog::warn("calibrate-camera: {}", warning);
   write_camera_report(report.path(), run.calibration, views);
   report.commit();  // the secondary output first: a report that cannot be moved into place fails before the file

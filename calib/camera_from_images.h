@@ -26,8 +26,9 @@ struct CameraImagesRun {
 // Detects the board in each image (skipping, with a warning, images without it), calibrates, writes the report and
 // then the calibration. Throws UsageError before any work for outputs that host/core/output_path.h refuses (one of
 // the images, an existing one without force), InputError naming the file for an unreadable image or one of another
-// size, and ProcessingError (after writing the report, which it names) when too few views remain or the poses are
-// degenerate.
+// size, and ProcessingError (after writing the report, which it names) when the board continues beyond the detected
+// corners in any image (calib/board_overhang.h), too few views remain, the poses are degenerate or the intrinsics are
+// not determined (check_intrinsics_determined).
 CameraImagesRun calibrate_camera_from_images(const CameraImagesRequest& request);
 
 // The default report directory of an output file: OUTPUT_STEM_report beside it.

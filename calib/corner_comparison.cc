@@ -10,6 +10,7 @@
 
 #include "host/core/errors.h"
 #include "host/core/json_file.h"
+#include "host/core/message_text.h"
 
 namespace rfrecon::calib {
 
@@ -104,13 +105,13 @@ std::vector<ViewCorners> read_view_corners(const std::filesystem::path& corners,
     const std::string name = view["name"].get<std::string>();
     const auto known = truth.find(name);
     if (known == truth.end()) {
-      throw InputError(corners.string() + ": view '" + name + "' is not in " + board_poses.string());
+      throw InputError(corners.string() + ": view '" + excerpt(name) + "' is not in " + board_poses.string());
     }
     views.push_back({known->second, read_pixels(view.value("camera_px", nlohmann::json()), corners, "camera_px"),
                      read_pixels(view.value("projector_px", nlohmann::json()), corners, "projector_px")});
     if (views.back().camera_px.size() != known->second.size() ||
         views.back().projector_px.size() != known->second.size()) {
-      throw InputError(corners.string() + ": view '" + name + "' has other corner counts than its board");
+      throw InputError(corners.string() + ": view '" + excerpt(name) + "' has other corner counts than its board");
     }
   }
   return views;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
 
 #include "calib/board_detection.h"
 
@@ -33,17 +34,31 @@ std::optional<cv::Point2f> correspondence_near(const cv::Mat& correspondence, cv
 
 }  // namespace
 
-bool align_corner_order(const std::vector<cv::Point2f>& camera_corners, const cv::Mat& correspondence,
-                        std::vector<cv::Point2f>& projector_corners) {
-  if (camera_corners.empty() || camera_corners.size() != projector_corners.size()) return false;
+std::string align_corner_order(const std::vector<cv::Point2f>& camera_corners, const cv::Mat& correspondence,
+                               std::vector<cv::Point2f>& projector_corners) {
+  if (camera_corners.size() < 2 || camera_corners.size() != projector_corners.size()) {
+    return "camera and projector corner counts differ";
+  }
   const auto first = correspondence_near(correspondence, camera_corners.front());
   const auto last = correspondence_near(correspondence, camera_corners.back());
-  if (!first || !last) return false;
+  if (!first || !last) {
+    return "no projector correspondence near the board's first or last corner: cannot match camera and projector "
+           "corners";
+  }
   const auto distance = [](cv::Point2f a, cv::Point2f b) { return std::hypot(a.x - b.x, a.y - b.y); };
   const float as_given = distance(*first, projector_corners.front()) + distance(*last, projector_corners.back());
   const float reversed = distance(*first, projector_corners.back()) + distance(*last, projector_corners.front());
+  // Each end within half a square: the corners along the first row are one square apart.
+  const float square_px = distance(projector_corners[0], projector_corners[1]);
+  if (!(std::min(as_given, reversed) < square_px)) {
+    return "the camera board's ends map " + std::to_string(std::lround(std::min(as_given, reversed))) +
+           " projector px (both ends together) from the dual image's board ends, more than a square (" +
+           std::to_string(std::lround(square_px)) +
+           " px): the camera and dual images show different parts of the board, so their corners cannot be put in "
+           "one order";
+  }
   if (reversed < as_given) std::reverse(projector_corners.begin(), projector_corners.end());
-  return true;
+  return {};
 }
 
 PoseObservation observe_board(const std::string& name, const cv::Mat& camera_image, const cv::Mat& dual_image,
@@ -57,14 +72,13 @@ PoseObservation observe_board(const std::string& name, const cv::Mat& camera_ima
     pose.problem = "board not found in the camera image (white frame)";
     return pose;
   }
+  pose.camera_overhang = board_overhang(pose.camera_image, board, pose.camera_corners);
   pose.projector_corners = find_board_corners(pose.dual_image, board);
   if (pose.projector_corners.empty()) {
     pose.problem = "board not found in the dual image T^T 1 (is the board lit by the projector?)";
     return pose;
   }
-  if (!align_corner_order(pose.camera_corners, correspondence, pose.projector_corners)) {
-    pose.problem = "no projector correspondence near the board's corners: cannot match camera and projector corners";
-  }
+  pose.problem = align_corner_order(pose.camera_corners, correspondence, pose.projector_corners);
   return pose;
 }
 

@@ -7,7 +7,9 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include "calib/board_detection.h"
 #include "calib/pose_diversity.h"
+#include "host/core/errors.h"
 
 namespace rfrecon::calib {
 
@@ -66,9 +68,13 @@ StereoCalibration calibrate_stereo(const std::vector<StereoView>& views, const B
   }
   StereoCalibration result;
   result.camera = calibrate_camera(camera_views, board, camera_size, options);
+  check_intrinsics_determined("camera", result.camera.camera_matrix, result.camera.intrinsics_std, result.camera.rms,
+                              camera_size, board, views.size());
   CalibrationOptions projector_options = options;
   projector_options.refine_board = false;  // the camera's board is the one used jointly
   result.projector = calibrate_camera(projector_views, board, projector_size, projector_options);
+  check_intrinsics_determined("projector", result.projector.camera_matrix, result.projector.intrinsics_std,
+                              result.projector.rms, projector_size, board, views.size());
 
   StereoRig& rig = result.rig;
   rig.camera_size = camera_size;
@@ -121,7 +127,16 @@ StereoCalibration calibrate_stereo(const std::vector<StereoView>& views, const B
     rig.per_view_errors.push_back(std::hypot(result.fit.camera_view_rms_px[i], result.fit.projector_view_rms_px[i]) /
                                   std::sqrt(2.0));
   }
-  compute_stereo_geometry(rig);
+  check_intrinsics_determined("jointly adjusted camera", rig.camera_matrix, rig.uncertainty.camera_intrinsics, rig.rms,
+                              camera_size, board, views.size());
+  check_intrinsics_determined("jointly adjusted projector", rig.projector_matrix, rig.uncertainty.projector_intrinsics,
+                              rig.rms, projector_size, board, views.size());
+  try {
+    compute_stereo_geometry(rig);
+  } catch (const InputError& error) {  // the rig is degenerate: a calibration's failure, not a rig file's
+    throw ProcessingError(board_options_text(board) + ": the rig calibrated from " + std::to_string(views.size()) +
+                          " poses cannot be rectified (" + error.what() + "): " + kBoardAdvice);
+  }
 
   result.warnings = pose_set_warnings(static_cast<int>(views.size()), result.camera.tilt_spread_deg);
   if (outliers > 0) {

@@ -40,7 +40,9 @@ struct StereoCalibration {
 // every board pose, both devices and the stereo pose together in cv::stereoCalibrate on the corners and, when views
 // hold dense correspondences, once more with them (adjust_stereo); with options.gating, gates the residuals
 // (calib/residual_gating.h) and adjusts again with the corners dropped and the poses down-weighted, up to three
-// rounds while a round decides something; then rectifies.
+// rounds while a round decides something; then rectifies. Throws ProcessingError, naming the board options, when
+// either device's intrinsics are not determined (check_intrinsics_determined), alone or jointly adjusted, or the rig
+// cannot be rectified.
 StereoCalibration calibrate_stereo(const std::vector<StereoView>& views, const BoardSpec& board, cv::Size camera_size,
                                    cv::Size projector_size, const CalibrationOptions& options = {});
 

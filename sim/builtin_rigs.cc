@@ -2,6 +2,7 @@
 #include "sim/builtin_rigs.h"
 
 #include "host/core/errors.h"
+#include "host/core/message_text.h"
 
 namespace rfrecon::sim {
 
@@ -86,7 +87,7 @@ json builtin_rig(const std::string& name) {
     if (name == rig.name) return rig.make();
     known += known.empty() ? rig.name : std::string(", ") + rig.name;
   }
-  throw InputError("unknown rig '" + name + "' (built-in rigs: " + known + ")");
+  throw InputError("unknown rig '" + excerpt(name) + "' (built-in rigs: " + known + ")");
 }
 
 json with_rig(json scene, const std::string& rig) {

@@ -5,6 +5,7 @@
 
 #include "host/core/errors.h"
 #include "host/core/json_file.h"
+#include "host/core/message_text.h"
 #include "sim/builtin_rigs.h"
 
 namespace rfrecon::sim {
@@ -162,19 +163,20 @@ Scene builtin_scene(const std::string& name, const std::string& rig) {
     if (name == b.name)
       return scene_from_json(rig.empty() ? b.make() : with_rig(b.make(), rig), "scene '" + name + "'", {});
   }
-  throw InputError("unknown scene '" + name + "' (built-in scenes: " + known_scenes() + ")");
+  throw InputError("unknown scene '" + excerpt(name) + "' (built-in scenes: " + known_scenes() + ")");
 }
 
 Scene resolve_scene(const std::string& name_or_file, const std::string& rig) {
   for (const auto& b : kBuiltins) {
     if (name_or_file == b.name) return builtin_scene(name_or_file, rig);
   }
-  if (std::filesystem::is_regular_file(name_or_file)) {
+  std::error_code ec;
+  if (std::filesystem::exists(name_or_file, ec)) {  // read_json_file refuses a FIFO or a directory by name
     const std::filesystem::path file(name_or_file);
     const json scene = read_json_file(file);
     return scene_from_json(rig.empty() ? scene : with_rig(scene, rig), file.string(), file.parent_path());
   }
-  throw InputError("--scene '" + name_or_file + "' is neither a built-in scene (" + known_scenes() +
+  throw InputError("--scene '" + excerpt(name_or_file) + "' is neither a built-in scene (" + known_scenes() +
                    ") nor a scene file");
 }
 

@@ -6,15 +6,29 @@
 #include <functional>
 #include <numeric>
 
+#include <assimp/IOStream.hpp>
+#include <assimp/IOSystem.hpp>
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include "host/core/errors.h"
+#include "host/core/message_text.h"
+#include "sim/mesh_file.h"
 
 namespace rfrecon::sim {
 
 namespace {
+// The file system assimp sees: no file at all. The mesh itself comes from memory, already checked, and a file it
+// names (an OBJ's "mtllib") is not opened: materials come from the scene, and a FIFO there would block.
+class NoOtherFiles : public Assimp::IOSystem {
+ public:
+  bool Exists(const char* /*file*/) const override { return false; }
+  char getOsSeparator() const override { return '/'; }
+  Assimp::IOStream* Open(const char* /*file*/, const char* /*mode*/) override { return nullptr; }
+  void Close(Assimp::IOStream* stream) override { delete stream; }
+};
+
 // An intersection in the object frame.
 struct LocalHit {
   double distance;
@@ -292,10 +306,16 @@ double footprint_diffuse(const Object& object, const Hit& hit, const Eigen::Vect
 }
 
 std::shared_ptr<const TriangleMesh> load_mesh(const std::string& file, double scale, const std::string& field) {
+  const MeshFile checked = read_mesh_file(file, field);
   Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(file, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
+  importer.SetIOHandler(new NoOtherFiles);  // the importer owns it
+  // Only ValidateDataStructure, which refuses a face index past the vertices (assimp's PLY reader does not check
+  // them); faces are triangulated below, as assimp's Triangulate step aborts on some malformed polygons.
+  const aiScene* scene = importer.ReadFileFromMemory(checked.bytes.data(), checked.bytes.size(),
+                                                     aiProcess_ValidateDataStructure, checked.format.c_str());
   if (scene == nullptr) {
-    throw InputError(field + ": cannot load mesh '" + file + "' (" + importer.GetErrorString() + ")");
+    throw InputError(field + ": cannot load mesh " + file + " (" +
+                     excerpt(importer.GetErrorString(), 2 * kMaxQuotedChars) + ")");
   }
   auto mesh = std::make_shared<TriangleMesh>();
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
@@ -307,11 +327,13 @@ std::shared_ptr<const TriangleMesh> load_mesh(const std::string& file, double sc
     }
     for (unsigned f = 0; f < part->mNumFaces; ++f) {
       const aiFace& face = part->mFaces[f];
-      if (face.mNumIndices != 3) continue;  // points and lines left by triangulation
-      mesh->triangles.emplace_back(base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]);
+      for (unsigned corner = 2; corner < face.mNumIndices; ++corner) {  // a fan; points and lines make none
+        mesh->triangles.emplace_back(base + face.mIndices[0], base + face.mIndices[corner - 1],
+                                     base + face.mIndices[corner]);
+      }
     }
   }
-  if (mesh->triangles.empty()) throw InputError(field + ": mesh '" + file + "' holds no triangles");
+  if (mesh->triangles.empty()) throw InputError(field + ": mesh " + file + " holds no triangles");
   build_bvh(*mesh);
   return mesh;
 }

@@ -84,7 +84,8 @@ std::optional<Hit> intersect(const Object& object, const Ray& ray, double min_di
 // come out as a sensor sees them, without the aliasing of point samples; other objects keep hit.diffuse.
 double footprint_diffuse(const Object& object, const Hit& hit, const Eigen::Vector3d& du, const Eigen::Vector3d& dv);
 
-// Loads a PLY/OBJ/... triangle mesh with assimp (all meshes of the file, triangulated, vertices scaled by `scale`).
+// Loads a PLY or OBJ triangle mesh (read_mesh_file's checks, then assimp from memory; faces fan-triangulated;
+// all meshes of the file, vertices scaled by `scale`).
 // Throws InputError naming `field` and the file when it cannot be read or holds no triangles.
 std::shared_ptr<const TriangleMesh> load_mesh(const std::string& file, double scale, const std::string& field);
 

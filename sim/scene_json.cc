@@ -4,6 +4,7 @@
 
 #include "host/core/errors.h"
 #include "host/core/json_file.h"
+#include "host/core/message_text.h"
 #include "sim/builtin_rigs.h"
 #include "sim/scene.h"
 
@@ -19,8 +20,9 @@ class Reader {
  public:
   explicit Reader(std::string source) : source_(std::move(source)) {}
 
+  // `path` holds keys of the file, so it is quoted cut to a readable length.
   [[noreturn]] void fail(const std::string& path, const std::string& what) const {
-    throw InputError(source_ + ": " + path + ": " + what);
+    throw InputError(source_ + ": " + excerpt(path, 2 * kMaxQuotedChars) + ": " + what);
   }
 
   [[noreturn]] void fail(const std::string& message) const { throw InputError(source_ + ": " + message); }
@@ -166,7 +168,7 @@ Brdf parse_material(const Reader& r, const json& j, const std::string& path) {
   try {
     b.model = brdf_model_from_string(r.get<std::string>(j, path, "brdf"));
   } catch (const InputError& error) {
-    r.fail(Reader::join(path, "brdf"), error.what());
+    r.fail(Reader::join(path, "brdf"), excerpt(error.what(), 2 * kMaxQuotedChars));
   }
   b.diffuse = r.get<double>(j, path, "diffuse", b.diffuse);
   b.specular = r.get<double>(j, path, "specular", b.specular);
@@ -209,7 +211,7 @@ ShapeKind shape_from_string(const Reader& r, const std::string& name, const std:
        {ShapeKind::kPlane, ShapeKind::kBox, ShapeKind::kSphere, ShapeKind::kCylinder, ShapeKind::kMesh}) {
     if (name == to_string(kind)) return kind;
   }
-  r.fail(path, "unknown shape '" + name + "' (expected plane, box, sphere, cylinder or mesh)");
+  r.fail(path, "unknown shape '" + excerpt(name) + "' (expected plane, box, sphere, cylinder or mesh)");
 }
 
 Object parse_object(const Reader& r, const json& j, const std::string& path, std::size_t index,
@@ -341,7 +343,7 @@ Scene scene_from_json(const json& root, const std::string& source, const fs::pat
     try {
       devices = builtin_rig(rig);
     } catch (const InputError& error) {
-      r.fail("rig", error.what());
+      r.fail("rig", excerpt(error.what(), 2 * kMaxQuotedChars));
     }
   }
   if (!devices.contains("camera")) r.fail("camera", "missing (or name a built-in rig with 'rig')");

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -15,8 +14,10 @@
 #include "host/core/atomic_file.h"
 #include "host/core/errors.h"
 #include "host/core/image_file.h"
+#include "host/core/input_file.h"
 #include "host/core/json_file.h"
 #include "host/core/limits.h"
+#include "host/core/message_text.h"
 
 namespace rfrecon::capture {
 
@@ -37,7 +38,7 @@ double response_gamma(const std::string& response, const std::string& file) {
     } catch (const std::exception&) {
     }
   }
-  throw InputError(file + ": camera_response '" + response + "' is not 'linear' or 'gamma:<g>' with g > 0");
+  throw InputError(file + ": camera_response '" + excerpt(response) + "' is not 'linear' or 'gamma:<g>' with g > 0");
 }
 
 json size_to_json(cv::Size size) { return json::array({size.width, size.height}); }
@@ -84,7 +85,7 @@ cv::Size size_field(const json& object, const std::string& key, const fs::path& 
 void check_frame_path(const std::string& name, const fs::path& dir, FramePaths paths, const std::string& where,
                       const fs::path& file) {
   const auto fail = [&](const std::string& what) {
-    throw InputError(file.string() + ": " + where + "file '" + name.substr(0, name.find('\0')) + "' " + what);
+    throw InputError(file.string() + ": " + where + "file '" + excerpt(name) + "' " + what);
   };
   if (name.empty()) fail("is empty");
   if (name.find('\0') != std::string::npos) fail("contains a NUL character");
@@ -150,7 +151,7 @@ void validate_manifest(const CaptureManifest& manifest, const std::string& where
   const int row_bits = gray_bits(manifest.projector_size.height);
   for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
     const auto& pattern = manifest.frames[i].pattern;
-    const std::string where = "frames[" + std::to_string(i) + "] (" + manifest.frames[i].file + "): ";
+    const std::string where = "frames[" + std::to_string(i) + "] (" + excerpt(manifest.frames[i].file) + "): ";
     switch (pattern.kind) {
       case PatternKind::kWhite:
       case PatternKind::kBlack:
@@ -205,16 +206,19 @@ void check_frame_files(const CaptureManifest& manifest, const fs::path& dir, con
     std::error_code ec;
     const fs::file_status status = fs::status(path, ec);
     if (status.type() == fs::file_type::not_found) {
-      throw InputError("missing frame: " + path.string() + " (listed in " + file.string() + ")");
+      throw InputError("missing frame: " + excerpt(path.string(), 2 * kMaxQuotedChars) + " (listed in " +
+                       file.string() + ")");
     }
     if (!fs::is_regular_file(status)) {
-      throw InputError("unreadable frame: " + path.string() + " (listed in " + file.string() +
-                       "): " + (ec ? ec.message() : std::string("not a regular file")));
+      throw InputError("unreadable frame: " + excerpt(path.string(), 2 * kMaxQuotedChars) + " (listed in " +
+                       file.string() + "): " + (ec ? ec.message() : "is " + kind_of_file(status)) +
+                       "; rfrecon reads only regular files");
     }
     const auto [it, fresh] = first_use.emplace(fs::canonical(path, ec), i);
     if (!fresh) {
       throw InputError(file.string() + ": frames[" + std::to_string(it->second) + "] and frames[" + std::to_string(i) +
-                       "] are the same file (" + manifest.frames[i].file + "); every pattern needs its own capture");
+                       "] are the same file (" + excerpt(manifest.frames[i].file) +
+                       "); every pattern needs its own capture");
     }
   }
 }
@@ -223,19 +227,12 @@ void check_frame_files(const CaptureManifest& manifest, const fs::path& dir, con
 CaptureManifest read_manifest(const fs::path& capture_dir, FramePaths frame_paths) {
   const fs::path file = capture_dir / kManifestFileName;
   std::error_code ec;
-  if (fs::exists(file, ec) && !fs::is_regular_file(file, ec)) throw InputError(file.string() + ": not a regular file");
-  std::ifstream in(file);
-  if (!in) {
+  if (!fs::exists(file, ec)) {
     throw InputError("cannot read " + file.string() +
                      " (a capture directory needs a manifest; for OpenCV-style captures pass --layout "
                      "opencv-graycode --projector WxH)");
   }
-  json root;
-  try {
-    root = json::parse(in);
-  } catch (const json::exception& error) {  // parse_error, out_of_range (a number like 1e999)
-    throw InputError(file.string() + ": not valid JSON (" + error.what() + ")");
-  }
+  const json root = read_json_file(file);
   if (!root.is_object()) throw InputError(file.string() + ": the top level must be a JSON object");
   const int version = field<int>(root, "version", "", file);
   if (version != kManifestVersion) {

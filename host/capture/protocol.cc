@@ -5,6 +5,7 @@
 
 #include "host/core/errors.h"
 #include "host/core/limits.h"
+#include "host/core/message_text.h"
 
 namespace rfrecon::capture {
 
@@ -129,7 +130,7 @@ PatternKind pattern_kind_from_string(const std::string& name) {
        {PatternKind::kWhite, PatternKind::kBlack, PatternKind::kGrayColumn, PatternKind::kGrayRow, PatternKind::kDot}) {
     if (name == to_string(kind)) return kind;
   }
-  throw InputError("unknown pattern kind '" + name + "' (expected white, black, gray_col, gray_row or dot)");
+  throw InputError("unknown pattern kind '" + excerpt(name) + "' (expected white, black, gray_col, gray_row or dot)");
 }
 
 }  // namespace rfrecon::capture

@@ -2,10 +2,14 @@
 #include "host/cl/binary_manifest.h"
 
 #include <algorithm>
-#include <fstream>
 #include <sstream>
 
 #include "host/cl/kernel_sources.h"
+#include "host/core/errors.h"
+#include "host/core/input_file.h"
+#include "host/core/json_file.h"
+#include "host/core/limits.h"
+#include "host/core/message_text.h"
 #include "kernels/common/params.h"
 
 namespace rfrecon::cl {
@@ -21,7 +25,9 @@ std::string describe_problem(const std::filesystem::path& file, const std::strin
 
 void expect_equal(const std::filesystem::path& file, const std::string& field, const nlohmann::json& expected,
                   const nlohmann::json& found, const std::string& whose) {
-  if (expected != found) fail(file, field, "expected " + expected.dump() + " (" + whose + "), found " + found.dump());
+  if (expected != found) {
+    fail(file, field, "expected " + expected.dump() + " (" + whose + "), found " + excerpt(found.dump()));
+  }
 }
 
 // The manifest's fields and their JSON types (docs/formats.md); every one must be present.
@@ -45,17 +51,27 @@ constexpr FieldType kFields[] = {
     {"sources", nlohmann::json::value_t::array, "an array of file names"},
 };
 
+// Empty when `path` is a regular file; else `missing` when there is nothing there, or what is there (a FIFO would
+// block the read).
+std::string regular_file_problem(const std::filesystem::path& path, const std::string& missing) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_regular_file(status)) return "";
+  return std::filesystem::exists(status) ? "is " + kind_of_file(status) + "; rfrecon reads only regular files"
+                                         : missing;
+}
+
 void check_format(const std::filesystem::path& file, const nlohmann::json& manifest) {
   if (!manifest.is_object()) fail(file, "", "not a JSON object");
   for (const auto& field : kFields) {
     const auto it = manifest.find(field.name);
     if (it == manifest.end()) fail(file, field.name, "missing");
     if (it->type() != field.type)
-      fail(file, field.name, std::string("expected ") + field.type_name + ", found " + it->dump());
+      fail(file, field.name, std::string("expected ") + field.type_name + ", found " + excerpt(it->dump()));
   }
   for (const char* list : {"kernels", "sources"}) {
     for (const auto& item : manifest[list]) {
-      if (!item.is_string()) fail(file, list, "expected an array of strings, found " + manifest[list].dump());
+      if (!item.is_string()) fail(file, list, "expected an array of strings, found " + excerpt(manifest[list].dump()));
     }
   }
 }
@@ -99,17 +115,24 @@ ManifestExpectation host_manifest_expectation(const DeviceInfo& info) {
 
 BinaryManifest check_binary_manifest(const std::filesystem::path& binary, const ManifestExpectation& expected) {
   const std::filesystem::path file = binary.string() + ".json";
-  if (!std::filesystem::is_regular_file(binary)) fail(binary, "", "no such kernel binary");
-  if (!std::filesystem::is_regular_file(file)) {
-    fail(file, "", "missing: every board binary needs the manifest its hw/ flow writes beside it (docs/fpga.md)");
+  if (const auto problem = regular_file_problem(binary, "no such kernel binary"); !problem.empty()) {
+    fail(binary, "", problem);
   }
-  nlohmann::json manifest;
+  if (const auto problem = regular_file_problem(
+          file, "missing: every board binary needs the manifest its hw/ flow writes beside it (docs/fpga.md)");
+      !problem.empty()) {
+    fail(file, "", problem);
+  }
+  std::string text;
   try {
-    std::ifstream in(file);
-    manifest = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& error) {  // parse_error, out_of_range (a number like 1e999)
-    fail(file, "", std::string("not valid JSON (") + error.what() + ")");
+    text = read_input_file(file, kMaxJsonBytes, "a JSON file");
+  } catch (const InputError& error) {  // too large, or unreadable
+    fail(file, "", std::string("not a readable manifest: ") + error.what());
   }
+  std::string problem;
+  auto parsed = parse_json_text(text, problem);
+  if (!parsed) fail(file, "", problem);
+  nlohmann::json& manifest = *parsed;
   check_format(file, manifest);
   expect_equal(file, "binary", binary.filename().string(), manifest["binary"], "the binary's file name");
   if (manifest["stand_in"].get<bool>()) {
@@ -130,7 +153,8 @@ BinaryManifest check_binary_manifest(const std::filesystem::path& binary, const 
   }
   for (const auto& [name, value] : parameters.items()) {
     if (!expected.parameters.contains(name)) {
-      fail(file, "parameters." + name, "found " + value.dump() + ", a parameter this host does not know");
+      fail(file, "parameters." + excerpt(name),
+           "found " + excerpt(value.dump()) + ", a parameter this host does not know");
     }
   }
   expect_equal(file, "source_sha256", expected.source_sha256, manifest["source_sha256"],
@@ -138,7 +162,7 @@ BinaryManifest check_binary_manifest(const std::filesystem::path& binary, const 
   const auto& kernels = manifest["kernels"];
   for (const auto& kernel : expected.kernels) {
     if (std::find(kernels.begin(), kernels.end(), kernel) == kernels.end()) {
-      fail(file, "kernels", "expected " + kernel + " among them (the host runs it), found " + kernels.dump());
+      fail(file, "kernels", "expected " + kernel + " among them (the host runs it), found " + excerpt(kernels.dump()));
     }
   }
   return {binary, file, parameters};
@@ -175,12 +199,12 @@ void check_options_match_manifest(const BinaryManifest& manifest, std::string_vi
     if (!is_define || it == manifest.parameters.end()) {
       fail(manifest.file, "parameters",
            "build option " + option + " cannot apply to the precompiled " + manifest.binary.filename().string() +
-               ", which fixes only " + manifest.parameters.dump());
+               ", which fixes only " + excerpt(manifest.parameters.dump(), 2 * kMaxQuotedChars));
     }
     if (option.substr(equals + 1) != it->dump()) {
       fail(manifest.file, "parameters." + name,
-           "expected " + option.substr(equals + 1) + " (the run-time option " + option + "), found " + it->dump() +
-               ": rebuild the binary with that value or run with the binary's");
+           "expected " + option.substr(equals + 1) + " (the run-time option " + option + "), found " +
+               excerpt(it->dump()) + ": rebuild the binary with that value or run with the binary's");
     }
   }
 }

@@ -30,6 +30,15 @@ void enqueue_kernel(::cl::CommandQueue& queue, const ::cl::Kernel& kernel, Kerne
   RF_CL_CHECK(queue.enqueueNDRangeKernel(kernel, ::cl::NullRange, global, local, options.wait, options.done));
 }
 
+std::size_t private_work_group(const DeviceInfo& device, std::size_t private_bytes_per_item) {
+  if (device.kind != DeviceKind::kCpu) return 0;
+  const std::size_t fitting = kCpuWorkGroupPrivateBytes / std::max<std::size_t>(private_bytes_per_item, 1);
+  const std::size_t limit = std::max<std::size_t>(std::min(fitting, device.max_work_group_size), 1);
+  std::size_t group = 1;
+  while (group * 2 <= limit) group *= 2;
+  return group;
+}
+
 namespace detail {
 
 ::cl::Buffer create_buffer(const ::cl::Context& context, cl_mem_flags flags, std::size_t bytes, const void* host,

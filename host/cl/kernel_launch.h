@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "host/cl/device_info.h"
 #include "host/cl/error.h"
 #include "host/cl/kernel_entry.h"
 #include "host/cl/opencl.h"
@@ -38,6 +39,14 @@ struct LaunchOptions {
   const std::vector<::cl::Event>* wait = nullptr;  // run after these events
   ::cl::Event* done = nullptr;                     // receives the kernel's completion event
 };
+
+// CPU runtimes (PoCL) keep a work-group's private arrays on one worker thread's stack, and their own choice of
+// work-group (up to 4096 work-items) overflows it for kernels with large arrays (the compression at K = 64). The
+// largest work-group whose private arrays, `private_bytes_per_item` each, stay within kCpuWorkGroupPrivateBytes: a
+// power of two, at least 1 and at most the device's limit. 0 (the runtime's choice) on GPUs and accelerators, whose
+// runtimes size work-groups from the kernel's real private memory.
+inline constexpr std::size_t kCpuWorkGroupPrivateBytes = std::size_t{1} << 20;
+std::size_t private_work_group(const DeviceInfo& device, std::size_t private_bytes_per_item);
 
 // Enqueues kernel for `items` items: one work-item per item (kNdRange) or one work-item in all (kSingleWorkItem,
 // global and local size 1: the kernel loops over the items).

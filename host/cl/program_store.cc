@@ -58,7 +58,9 @@ void ProgramStore::save(std::uint64_t key, const std::vector<unsigned char>& bin
   if (!enabled() || binary.empty()) return;
   try {
     std::filesystem::create_directories(directory_);
-    write_file_atomically(path(key), std::string_view(reinterpret_cast<const char*>(binary.data()), binary.size()));
+    // A cache entry: whatever another run stored meanwhile under the same key is replaced.
+    write_file_atomically(path(key), std::string_view(reinterpret_cast<const char*>(binary.data()), binary.size()),
+                          ReplacePolicy::kAlways);
   } catch (const std::exception& error) {
     spdlog::warn("program cache: not saved ({}); set {}=off to stop trying", error.what(), kProgramCacheEnv);
   }

@@ -46,7 +46,7 @@ void run_evaluate_rig(const EvaluateRigOptions& options) {
   std::printf("baseline   %+.5f%%  rotation %.4f degree\n", 100.0 * c.baseline_error, c.rotation_error_deg);
   std::printf("depth      scale error %+.2e  RMS %.2e over %d points at 500 to 700 mm\n", c.depth_scale_error,
               c.depth_rms_error, c.points);
-  nlohmann::json corners;
+  nlohmann::json corners = nlohmann::json::object();
   if (!options.corners.empty()) {
     const auto e = calib::compare_corners(views, truth);
     for (const auto& [device, errors] : {std::pair{"camera", e.camera}, std::pair{"projector", e.projector}}) {

@@ -4,6 +4,7 @@
 #include "host/capture/pattern_files.h"
 #include "host/capture/protocol.h"
 #include "host/cli/commands.h"
+#include "host/cli/number_checks.h"
 #include "host/cli/size_option.h"
 
 namespace rfrecon::cli {
@@ -32,7 +33,7 @@ void add_patterns_command(CLI::App& app) {
   command->add_option("--projector", options->projector, "Projector resolution WxH, e.g. 1024x768")->required();
   command->add_option("-o,--output", options->out, "Output directory (created)")->required();
   command->add_option("--dot-spacing", options->dot_spacing, "Dot grid spacing s (s x s frames); 0 = Gray code only")
-      ->check(CLI::Range(0, capture::kMaxDotSpacing))
+      ->check(zero_or_range(2, capture::kMaxDotSpacing, "Gray code only"))
       ->capture_default_str();
   command->add_flag("--force", options->force, "Replace an existing non-empty output directory");
   command->callback([options] { run_patterns(*options); });

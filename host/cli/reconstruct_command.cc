@@ -52,30 +52,30 @@ void add_reconstruct_command(CLI::App& app) {
   command
       ->add_option("--epipolar-tolerance", depth.rectification.epipolar_tolerance_px,
                    "Reject correspondences further than this from their rectified row (px)")
-      ->check(finite_positive())
+      ->check(finite_range(0.01, 1000.0))
       ->capture_default_str();
   command
       ->add_option("--saturation", depth.rectification.saturation,
                    "Drop pixels with a T entry at or above this (linear, 1 = full scale)")
-      ->check(finite_positive())
+      ->check(finite_range(0.1, 1000.0))
       ->capture_default_str();
   command
       ->add_option("--edge-relative", depth.rectification.edge_relative,
                    "Drop pixels whose direct energy differs from a neighbour's by more than this fraction of their "
                    "own (albedo and shadow edges bias the correspondence)")
-      ->check(finite_positive())
+      ->check(finite_range(0.1, 1000.0))
       ->capture_default_str();
   command
       ->add_option("--edge-footprint", depth.rectification.edge_footprint_px2,
                    "Correct the correspondences on albedo and shadow edges for a camera-pixel footprint of this "
                    "second moment (px^2: 1/12 for a sharp pixel, plus the blur's variance; 0: off)")
-      ->check(finite_non_negative())
+      ->check(finite_range(0.0, 10.0))
       ->capture_default_str();
   command->add_option("--jump", depth.segmentation.jump_relative, "Relative depth step that ends a run")
-      ->check(finite_positive())
+      ->check(finite_range(0.001, 1000.0))
       ->capture_default_str();
   command->add_option("--crease", depth.segmentation.crease_deg, "Change of in-row slope that ends a run (deg)")
-      ->check(finite_positive())
+      ->check(finite_range(1.0, 180.0))
       ->capture_default_str();
   command->add_option("--passes", depth.integration.passes, "Shooting passes of the integration")
       ->check(CLI::Range(1, 20))
@@ -84,10 +84,10 @@ void add_reconstruct_command(CLI::App& app) {
       ->check(CLI::Range(1, 20))
       ->capture_default_str();
   command->add_option("--sigma-disparity", depth.fusion.sigma_disparity_px, "Disparity noise, px (fusion weight)")
-      ->check(finite_positive())
+      ->check(finite_range(1e-4, 100.0))
       ->capture_default_str();
   command->add_option("--sigma-step", depth.fusion.sigma_step_mm, "ODE step error, mm (fusion weight)")
-      ->check(finite_positive())
+      ->check(finite_range(1e-4, 100.0))
       ->capture_default_str();
   command->callback([options] { run_reconstruct(*options); });
 }

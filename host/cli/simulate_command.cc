@@ -9,6 +9,7 @@
 
 #include "host/capture/protocol.h"
 #include "host/cli/commands.h"
+#include "host/cli/number_checks.h"
 #include "host/cli/size_option.h"
 #include "host/core/errors.h"
 #include "sim/builtin_rigs.h"
@@ -78,7 +79,7 @@ void add_simulate_command(CLI::App& app) {
   command
       ->add_option("--dot-spacing", o->dot_spacing,
                    "Dot grid spacing s of the capture; 0 = Gray code, white and black only (default: the scene's)")
-      ->check(CLI::Range(0, capture::kMaxDotSpacing));
+      ->check(zero_or_range(2, capture::kMaxDotSpacing, "Gray code only"));
   command->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(0, 1024));
   command->callback([o] { run_simulate(*o); });
 }

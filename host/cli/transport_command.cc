@@ -13,6 +13,9 @@
 namespace rfrecon::cli {
 
 namespace {
+// Thresholds are linear (1 = full scale): above half of it no pixel of any capture could pass.
+constexpr double kMaxThreshold = 0.5;
+
 struct TransportOptions {
   pipeline::TransportRequest request;
   CaptureOptions capture;
@@ -69,20 +72,22 @@ void add_transport_command(CLI::App& app) {
   command->add_option("-k,--entries", setup.entries_per_pixel, "Entries kept per camera pixel (K)")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
-  command->add_option("--black-threshold", setup.thresholds.black, "Lit when white - black exceeds this (linear)")
-      ->check(finite_non_negative())
+  command
+      ->add_option("--black-threshold", setup.thresholds.black,
+                   "Lit when white - black exceeds this (linear, 1 = full scale)")
+      ->check(finite_range(0.0, kMaxThreshold))
       ->capture_default_str();
   command
       ->add_option("--white-threshold", setup.thresholds.white,
                    "Gray bit trusted when |pattern - inverse| exceeds this (linear; 0, the default: 4.5 DN at the "
                    "capture's bit depth); Gray-code-only captures also need 3 sigma of each pixel's noise and 2 % of "
                    "its white - black")
-      ->check(finite_non_negative());
+      ->check(finite_range(0.0, kMaxThreshold));
   command
       ->add_option("--noise-threshold", setup.thresholds.noise,
                    "Transport entries at or below are dropped (linear; 0, the default: 2.5 DN at the capture's bit "
                    "depth)")
-      ->check(finite_non_negative());
+      ->check(finite_range(0.0, kMaxThreshold));
   add_entry_option(command, options->request.entries);
   command->add_option("--readers", options->request.readers, "Threads reading frames ahead of the devices")
       ->check(CLI::Range(1, 64))

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <climits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -31,12 +32,27 @@ void write_image(const std::filesystem::path& file, const cv::Mat& image) {
   }
 }
 
-cv::Mat decode_image(const std::filesystem::path& file, int flags) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) {
-    throw InputError(file.string() + (std::filesystem::exists(file, ec) ? ": not a regular file" : ": missing"));
+namespace {
+// The declared size within host/core/limits.h, the data able to fit in the file, the decoded pixels in memory.
+void check_image_header(const ImageHeader& header, const std::filesystem::path& file) {
+  const auto clamped = [](std::int64_t side) { return static_cast<int>(std::min<std::int64_t>(side, INT_MAX)); };
+  const cv::Size size(clamped(header.width), clamped(header.height));
+  check_image_size(size, file.string());
+  std::error_code error;
+  const std::uintmax_t file_bytes = std::filesystem::file_size(file, error);
+  if (error) throw InputError(file.string() + ": cannot be read (" + error.message() + ")");
+  if (header.min_file_bytes > file_bytes) {
+    throw InputError(file.string() + ": a " + size_text(size) + " " + header.format + " needs at least " +
+                     std::to_string(header.min_file_bytes) + " bytes, the file has " + std::to_string(file_bytes) +
+                     " (truncated or damaged)");
   }
-  if (const auto size = image_header_size(file)) check_image_size(*size, file.string());
+  check_memory(static_cast<double>(size.area()) * header.channels * header.bytes_per_sample,
+               file.string() + ": decoding its " + size_text(size) + " pixels");
+}
+}  // namespace
+
+cv::Mat decode_image(const std::filesystem::path& file, int flags) {
+  check_image_header(read_image_header(file), file);
   cv::Mat image;
   try {
     image = cv::imread(file.string(), flags);

@@ -19,9 +19,11 @@ std::string lowercase_extension(const std::filesystem::path& file);
 // OutputError naming the file when it cannot be written.
 void write_image(const std::filesystem::path& file, const cv::Mat& image);
 
-// cv::imread(file, flags) with the checks every image read needs: a regular file, the size its header declares
-// (PNG, TIFF) within host/core/limits.h before anything is decoded, and every decoder failure an InputError
-// naming the file. Never returns an empty image.
+// cv::imread(file, flags) with the checks every image read needs, before anything is decoded: a regular file (a
+// FIFO is refused without opening it), a format of read_image_header (PNG, TIFF, JPEG, BMP, PNM), the size its
+// header declares within host/core/limits.h, a file large enough for the data it declares and memory for the
+// decoded pixels. Every failure, the decoder's included, is an InputError naming the file. Never returns an empty
+// image.
 cv::Mat decode_image(const std::filesystem::path& file, int flags);
 
 // Reads `file` unchanged and checks that it holds `type` (e.g. CV_32FC3). Throws InputError naming the file when

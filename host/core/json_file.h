@@ -7,6 +7,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -14,8 +15,13 @@
 
 namespace rfrecon {
 
-// Parses `file`. Throws InputError "cannot read FILE" when it cannot be opened and "FILE: not valid JSON (...)"
-// (bad syntax, or a number outside the range of a double).
+// `text` parsed, or std::nullopt with `problem` set: "not valid JSON (...)" (bad syntax, or a number outside the
+// range of a double) or "arrays and objects nested deeper than kMaxNestingDepth levels ...". The depth is checked as
+// the parser goes, before the tree that code walks recursively (copies, comparisons, dump) exists.
+std::optional<nlohmann::json> parse_json_text(std::string_view text, std::string& problem);
+
+// Parses `file`, a regular file (check_input_file: a FIFO is refused without being opened) of at most kMaxJsonBytes.
+// Throws InputError naming the file for each of these and for the problems of parse_json_text.
 nlohmann::json read_json_file(const std::filesystem::path& file);
 
 namespace detail {

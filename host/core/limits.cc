@@ -1,9 +1,13 @@
 // Size and memory limits with messages that name the offending file or option.
 #include "host/core/limits.h"
 
+#include <array>
+#include <fstream>
+
 #include <unistd.h>
 
 #include "host/core/errors.h"
+#include "host/core/input_file.h"
 
 namespace rfrecon {
 
@@ -23,6 +27,27 @@ void check_memory(double bytes, const std::string& what) {
                      " MiB, more than this machine's " + std::to_string(static_cast<long long>(physical / (1 << 20))) +
                      " MiB of memory");
   }
+}
+
+std::string read_input_file(const std::filesystem::path& file, std::size_t max_bytes, const std::string& what) {
+  check_input_file(file);
+  const auto refuse = [&](const std::string& size) {
+    throw InputError(file.string() + ": " + size + " bytes, over the limit of " + std::to_string(max_bytes) + " for " +
+                     what + " (docs/formats.md#limits)");
+  };
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
+  if (!ec && size > max_bytes) refuse(std::to_string(size));
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError("cannot read " + file.string());
+  std::string bytes;
+  bytes.reserve(ec ? 0 : static_cast<std::size_t>(size));
+  std::array<char, 1 << 16> chunk{};
+  while (in.read(chunk.data(), chunk.size()) || in.gcount() > 0) {  // the file may have grown since its stat
+    bytes.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
+    if (bytes.size() > max_bytes) refuse("more than " + std::to_string(max_bytes));
+  }
+  return bytes;
 }
 
 }  // namespace rfrecon

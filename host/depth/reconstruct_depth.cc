@@ -58,6 +58,25 @@ void check_request(const transport::CompressedTransport& transport, const DepthO
   }
 }
 
+// Where the pixels with a correspondence went, each loss with the option that sets it: the text of the warning when
+// fewer than half are reconstructed and of the error when none is.
+std::string where_pixels_went(const nlohmann::json& summary, const CameraGridTriangulation& triangulation,
+                              const DepthOptions& options, const std::string& rig_name) {
+  std::string why = std::to_string(triangulation.off_epipolar) + " off their epipolar line by more than " +
+                    fmt::format("{:g}", options.rectification.epipolar_tolerance_px) + " px (--epipolar-tolerance; " +
+                    "is " + rig_name + " this capture's calibration?), " +
+                    std::to_string(triangulation.boundary_pixels) + " on object boundaries, " +
+                    std::to_string(triangulation.edge_pixels) + " on albedo or shadow edges (--edge-relative)";
+  if (summary.contains("segmentation")) {
+    const auto& segmentation = summary["segmentation"];
+    why += ", " + std::to_string(segmentation["usable_pixels"].get<int>()) +
+           " usable rectified samples for the integration (others lack primal or dual signal, or saturate: "
+           "--saturation), in runs ended by " +
+           std::to_string(segmentation["jumps"].get<int>()) + " depth jumps (--jump) and " +
+           std::to_string(segmentation["creases"].get<int>()) + " creases (--crease)";
+  }
+  return why;
+}
 }  // namespace
 
 std::string method_name(Method method) { return kMethodNames[static_cast<int>(method)]; }
@@ -143,9 +162,9 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
                                {"ode_breakdowns", segments.ode_breakdowns}};
     clock.lap("segment");
     if (segments.usable == 0) {
-      throw ProcessingError(
-          "nothing to integrate: every rectified pixel is masked (no primal signal, no dual "
-          "signal or no triangulated depth)");
+      throw ProcessingError("nothing to integrate: every rectified pixel is masked: of the " +
+                            std::to_string(triangulation.correspondences) + " pixels with a correspondence, " +
+                            where_pixels_went(summary, triangulation, options, rig_name));
     }
     // Rows are independent: the scheduler cuts them into tiles over the devices; each tile's depths go to its own
     // rows of z_rect, so the result does not depend on the split.
@@ -197,21 +216,16 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
   summary["reconstructed_pixels"] = reconstructed;
   summary["devices"] = nlohmann::json::array();
   for (const auto& device : devices) summary["devices"].push_back(device.info().device_name);
-  if (reconstructed == 0) throw ProcessingError("nothing reconstructed: every pixel was masked");
+  if (reconstructed == 0) {
+    throw ProcessingError("nothing reconstructed: of the " + std::to_string(triangulation.correspondences) +
+                          " pixels with a correspondence, " +
+                          where_pixels_went(summary, triangulation, options, rig_name));
+  }
   if (2 * reconstructed < triangulation.correspondences) {
-    std::string why = std::to_string(triangulation.off_epipolar) + " off their epipolar line by more than " +
-                      fmt::format("{:g}", options.rectification.epipolar_tolerance_px) + " px (--epipolar-tolerance; " +
-                      "is " + rig_name + " this capture's calibration?), " +
-                      std::to_string(triangulation.boundary_pixels) + " on object boundaries, " +
-                      std::to_string(triangulation.edge_pixels) + " on albedo or shadow edges (--edge-relative)";
-    if (summary.contains("segmentation")) {
-      why += ", " + std::to_string(summary["segmentation"]["usable_pixels"].get<int>()) +
-             " usable rectified samples for the integration (others lack primal or dual signal, or saturate: "
-             "--saturation)";
-    }
     const std::string warning = "only " + std::to_string(reconstructed) + " of the " +
                                 std::to_string(triangulation.correspondences) +
-                                " pixels with a correspondence were reconstructed: " + why;
+                                " pixels with a correspondence were reconstructed: " +
+                                where_pixels_went(summary, triangulation, options, rig_name);
     spdlog::warn("reconstruct: {}", warning);
     summary["warnings"].push_back(warning);
   }

@@ -16,6 +16,7 @@
 #include "host/core/atomic_file.h"
 #include "host/core/errors.h"
 #include "host/core/image_file.h"
+#include "host/core/message_text.h"
 #include "host/outputs/legend.h"
 
 namespace rfrecon::evaluation {
@@ -83,6 +84,16 @@ nlohmann::ordered_json stats_json(const ErrorStats& s, double size_mm) {
           {"normal_pixels", s.normal_pixels},
           {"normal_error_deg_rms", s.normal_rms_deg}};
 }
+// The objects' names for a message: each quoted through excerpt(), the first kListedObjects of them.
+std::string object_names(const std::vector<truth::TruthObject>& objects) {
+  constexpr std::size_t kListedObjects = 10;
+  std::string names;
+  for (std::size_t i = 0; i < std::min(objects.size(), kListedObjects); ++i) {
+    names += (i > 0 ? ", " : "") + excerpt(objects[i].name, 40);
+  }
+  if (objects.size() > kListedObjects) names += " and " + std::to_string(objects.size() - kListedObjects) + " more";
+  return names;
+}
 }  // namespace
 
 EvaluationTruth read_evaluation_truth(const fs::path& dir, const std::string& object_name) {
@@ -94,14 +105,13 @@ EvaluationTruth read_evaluation_truth(const fs::path& dir, const std::string& ob
     found = std::find_if(view.objects.begin(), view.objects.end(),
                          [&](const truth::TruthObject& o) { return o.name == object_name; });
     if (found == view.objects.end()) {
-      std::string names;
-      for (const auto& o : view.objects) names += (names.empty() ? "" : ", ") + o.name;
-      throw InputError(objects_file.string() + ": no object named '" + object_name + "' (objects: " + names + ")");
+      throw InputError(objects_file.string() + ": no object named '" + excerpt(object_name) +
+                       "' (objects: " + object_names(view.objects) + ")");
     }
   }
   if (!(found->size_mm > 0.0)) {
-    throw InputError(objects_file.string() + ": object '" + found->name + "' has no size to express errors in (" +
-                     found->size_rule + ")");
+    throw InputError(objects_file.string() + ": object '" + excerpt(found->name) +
+                     "' has no size to express errors in (" + excerpt(found->size_rule) + ")");
   }
   EvaluationTruth truth;
   truth.truth_dir = view.dir;
@@ -220,8 +230,14 @@ void write_evaluation(const Evaluation& evaluation, const fs::path& report_file,
   if (!cv::imencode(".png", outputs::with_legend(error_map(evaluation), legend), png)) {
     throw std::runtime_error("cannot encode the error map");
   }
-  write_file_atomically(error_map_file, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
-  write_file_atomically(report_file, evaluation_report(evaluation, recorded).dump(2) + "\n");
+  // Both written before either is renamed: an output that cannot be written, or that appeared meanwhile, leaves
+  // neither.
+  AtomicFile error_map_output(error_map_file);
+  error_map_output.write(std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+  AtomicFile report_output(report_file);
+  report_output.write(evaluation_report(evaluation, recorded).dump(2) + "\n");
+  error_map_output.commit();
+  report_output.commit();
 }
 
 }  // namespace rfrecon::evaluation

@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include "calib/board_detection.h"
+#include "calib/board_overhang.h"
 #include "calib/pose_observation.h"
 #include "calib/report.h"
 #include "calib/report_files.h"
@@ -68,6 +69,9 @@ RigCalibrationRun calibrate_rig(const RigCalibrationRequest& request, std::vecto
   run.poses = request.pose_dirs.size();
   StagingDirectory report(request.report_dir, true);
   std::vector<calib::StereoView> views;
+  std::vector<calib::ViewOverhang> overhangs;
+  std::size_t boards_found = 0;  // poses with the board in the camera image
+  std::string first_problem;     // of the first pose skipped, for the message when none is usable
   cv::Size camera_size;
   cv::Size projector_size;
   cv::Mat camera_background;
@@ -90,6 +94,8 @@ RigCalibrationRun calibrate_rig(const RigCalibrationRequest& request, std::vecto
                 calib::draw_corners(pose.camera_image, request.board, pose.camera_corners));
     write_image(report.path() / ("dual_" + pose.name + ".png"),
                 calib::draw_corners(pose.dual_image, request.board, pose.projector_corners));
+    if (!pose.camera_corners.empty()) ++boards_found;
+    if (pose.camera_overhang.any()) overhangs.push_back({pose_dir.string(), pose.camera_overhang});
     if (pose.usable()) {
       add_to_background(camera_background, pose.camera_image);
       add_to_background(projector_background, pose.dual_image);
@@ -99,14 +105,16 @@ RigCalibrationRun calibrate_rig(const RigCalibrationRequest& request, std::vecto
       run.view_names.push_back(pose.name);
     } else {
       spdlog::warn("{}: {}; pose skipped", pose_dir.string(), pose.problem);
+      if (first_problem.empty()) first_problem = pose_dir.string() + ": " + pose.problem;
     }
     progress.advance();
   }
   run.calibration = calib::keeping_report(report, [&] {
+    calib::check_board_fits(overhangs, request.board, boards_found);
     if (views.empty()) {
-      throw ProcessingError("the board (" + std::to_string(request.board.cols) + "x" +
-                            std::to_string(request.board.rows) + ") was found in none of the " +
-                            std::to_string(request.pose_dirs.size()) + " poses");
+      throw ProcessingError("none of the " + std::to_string(request.pose_dirs.size()) + " poses is usable with " +
+                            calib::board_options_text(request.board) + " (" + first_problem +
+                            "): " + calib::kBoardAdvice);
     }
     return calib::calibrate_stereo(views, request.board, camera_size, projector_size, request.options);
   });

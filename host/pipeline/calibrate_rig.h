@@ -32,8 +32,9 @@ struct RigCalibrationRun {
 // For each pose: T and T^T 1 on `devices`, corners in both images (a pose without the board is skipped with a
 // warning); then calibrates, writes the report and then rig.yaml. Throws UsageError before any work for outputs that
 // host/core/output_path.h refuses (one of the captures' files, an existing one without force), InputError for a bad
-// capture or mixed sizes (naming the pose), ProcessingError (after writing the report, which it names) when no pose or
-// too few remain or the poses are degenerate: no rig.yaml is written then.
+// capture or mixed sizes (naming the pose), ProcessingError (after writing the report, which it names) when the board
+// continues beyond the detected corners in any pose (calib/board_overhang.h), when no pose or too few remain, the
+// poses are degenerate or the intrinsics are not determined (calib/camera_calibration.h): no rig.yaml is written then.
 RigCalibrationRun calibrate_rig(const RigCalibrationRequest& request, std::vector<cl::DeviceContext>& devices,
                                 cl::ProgramCache& programs);
 

@@ -18,6 +18,23 @@
 
 namespace rfrecon::pipeline {
 
+namespace {
+std::string threshold_text(const char* option, float value) {
+  return std::string(option) + " " + (value > 0.0f ? std::to_string(value) : std::string("default"));
+}
+
+// "shadow 10 (at or below --black-threshold 0.02), ..., of N pixels": where the pixels went, and what set it.
+std::string outcome_text(const transport::PixelOutcomeCounts& counts, const transport::Thresholds& thresholds) {
+  using transport::PixelOutcome;
+  const auto count = [&](PixelOutcome outcome) { return std::to_string(counts[static_cast<std::size_t>(outcome)]); };
+  return "shadow " + count(PixelOutcome::kShadow) + " (lit at or below " +
+         threshold_text("--black-threshold", thresholds.black) + "), out of range " + count(PixelOutcome::kOutOfRange) +
+         ", undecided " + count(PixelOutcome::kUndecided) + " (Gray bits within " +
+         threshold_text("--white-threshold", thresholds.white) + "), no signal " + count(PixelOutcome::kNoSignal) +
+         " (dot entries at or below " + threshold_text("--noise-threshold", thresholds.noise) + ")";
+}
+}  // namespace
+
 TransportFileRun transport_capture(const TransportRequest& request, std::vector<cl::DeviceContext>& devices,
                                    cl::ProgramCache& programs) {
   request.entries.check_device_count(devices.size());
@@ -50,10 +67,10 @@ TransportFileRun transport_capture(const TransportRequest& request, std::vector<
     // The capture checks often know why (too dark, saturated, a gamma left on): they go into the message.
     std::string findings;
     for (const auto& finding : file_run.run.checks.findings) findings += " Capture check: " + finding.message + ".";
-    throw ProcessingError(request.capture_dir.string() +
-                          ": no camera pixel decoded (every Gray code pattern reads like its inverse, or nothing is "
-                          "lit above --black-threshold); check that each pattern and its inverse are different "
-                          "captures of a lit scene." +
+    throw ProcessingError(request.capture_dir.string() + ": no camera pixel decoded (" +
+                          outcome_text(file_run.outcomes, request.setup.thresholds) +
+                          "); check that each pattern and its inverse are different captures of a lit scene, and "
+                          "lower the threshold of the outcome that dominates." +
                           findings + " Nothing was written.");
   }
   AtomicFile t_file(request.output);

@@ -25,6 +25,7 @@ class DeviceAccumulator final : public TransportAccumulator {
         device_(device),
         entry_(entry),
         n_(setup.camera_size.area()),
+        work_group_(cl::private_work_group(device.info(), transport_private_bytes(setup.entries_per_pixel))),
         state_(make_empty_decoding(setup, std::move(storage))) {
     if (setup.entries_per_pixel < 1) throw std::invalid_argument("transport: K must be at least 1");
     const std::vector<cl::ProgramRequest> requests = transport_programs(setup, entry, build_options);
@@ -202,10 +203,11 @@ class DeviceAccumulator final : public TransportAccumulator {
   // The items of a kernel taking RF_LANES pixels per work-item: work-items (NDRange) or pixels (single work-item).
   std::size_t lanes_items() const { return entry_ == KernelEntry::kNdRange ? (n_ + RF_LANES - 1) / RF_LANES : n_; }
 
-  // Runs kernel over `items` (NDRange: work-items; default one per pixel) and waits for it.
+  // Runs kernel over `items` (NDRange: work-items, in work-groups whose private arrays fit a CPU runtime's stack;
+  // default one per pixel) and waits for it.
   void run(const ::cl::Kernel& kernel) { run(kernel, n_); }
   void run(const ::cl::Kernel& kernel, std::size_t items) {
-    cl::enqueue_kernel(device_.queue(), kernel, entry_, items);
+    cl::enqueue_kernel(device_.queue(), kernel, entry_, items, {work_group_});
     RF_CL_CHECK(device_.queue().finish());
   }
 
@@ -216,6 +218,7 @@ class DeviceAccumulator final : public TransportAccumulator {
   cl::DeviceContext& device_;
   KernelEntry entry_;
   std::size_t n_;
+  std::size_t work_group_;     // NDRange work-group size (cl::private_work_group), 0: the runtime's choice
   CompressedTransport state_;  // the kernels' state, shared with them (cl::share) until finish() returns it
   // NDRange entries: the memory that white_ and black_ lend to the kernels (declared before them: outlives them).
   cv::Mat white_frame_, black_frame_;

@@ -19,6 +19,9 @@
 
 #include "host/core/atomic_file.h"
 #include "host/core/errors.h"
+#include "host/core/input_file.h"
+#include "host/core/limits.h"
+#include "host/core/message_text.h"
 
 namespace rfrecon::transport {
 
@@ -28,10 +31,11 @@ namespace {
 
 constexpr const char* kFormat = "rfrecon-transport";
 constexpr int kFirstChecksummedVersion = 2;
-constexpr hsize_t kMaxStringBytes = 256;    // longest string attribute
-constexpr hsize_t kMaxElementBytes = 8;     // largest integer or float element
-constexpr hsize_t kMaxDeflateRatio = 1032;  // zlib's largest compression ratio
-constexpr hsize_t kRowsPerChunk = 32;       // bands of camera rows: compress well, read row by row
+constexpr hsize_t kMaxStringBytes = 256;          // longest string attribute
+constexpr std::size_t kMaxQuotedHdf5Chars = 160;  // of an HDF5 error description, which may quote the file
+constexpr hsize_t kMaxElementBytes = 8;           // largest integer or float element
+constexpr hsize_t kMaxDeflateRatio = 1032;        // zlib's largest compression ratio
+constexpr hsize_t kRowsPerChunk = 32;             // bands of camera rows: compress well, read row by row
 constexpr std::size_t kMemoryIncrementBytes = std::size_t{1} << 20;
 
 template <typename T>
@@ -109,15 +113,21 @@ struct Shapes {
   std::vector<hsize_t> pixels;   // (H, W)
 };
 
-bool has_checksum(const H5::DSetCreatPropList& properties) {
+// The dataset's filters, in pipeline order.
+std::vector<H5Z_filter_t> filters(const H5::DSetCreatPropList& properties) {
+  std::vector<H5Z_filter_t> ids;
   for (int i = 0; i < properties.getNfilters(); ++i) {
     unsigned flags = 0;
     unsigned config = 0;
     std::size_t value_count = 0;
-    if (properties.getFilter(i, flags, value_count, nullptr, 0, nullptr, config) == H5Z_FILTER_FLETCHER32) return true;
+    ids.push_back(properties.getFilter(i, flags, value_count, nullptr, 0, nullptr, config));
   }
-  return false;
+  return ids;
 }
+
+// HDF5's own filters (deflate, shuffle, Fletcher32, szip, n-bit, scale-offset): any other would make HDF5 look for a
+// plugin library to load.
+bool built_in(H5Z_filter_t filter) { return filter >= H5Z_FILTER_DEFLATE && filter <= H5Z_FILTER_SCALEOFFSET; }
 
 // Flag combinations the accumulators produce (kernels/transport/flags.h): valid only without shadow, low contrast
 // or out of range; no signal only for compressible pixels.
@@ -266,8 +276,10 @@ class Hdf5Errors {
 class Reader {
  public:
   explicit Reader(fs::path path) : path_(std::move(path)) {
+    check_input_file(path_);  // before HDF5 opens it: a FIFO would block
     std::error_code error;
-    if (!fs::is_regular_file(path_, error)) fail("file not found");
+    file_bytes_ = fs::file_size(path_, error);
+    if (error) fail("cannot be read (" + error.message() + ")");
     guarded("the HDF5 file", [&] { file_ = H5::H5File(path_.string(), H5F_ACC_RDONLY); });
   }
 
@@ -323,18 +335,25 @@ class Reader {
              " bytes, more than " + std::to_string(kMaxStringBytes));
       }
       std::string value;
-      attribute.read(type, value);
-      return value.substr(0, value.find('\0'));  // drop any NUL padding
+      attribute.read(type, value);  // a variable-length string is read from the file: no longer than the file
+      value.resize(std::min(value.size(), value.find('\0')));  // drop any NUL padding
+      if (value.size() > kMaxStringBytes) {
+        fail(std::string("attribute '") + name + "' is a string of " + std::to_string(value.size()) +
+             " bytes, more than " + std::to_string(kMaxStringBytes));
+      }
+      return value;
     });
   }
 
-  // Dataset `name`, which must have `shape`, read as T. Its type, shape, chunks and stored size are checked before
-  // anything is allocated: a file cannot claim more data than it holds (deflate compresses at most 1032:1).
+  // Dataset `name`, which must have `shape`, read as T. Its link, storage, type, shape, chunks, filters and stored
+  // size are checked before anything is allocated or any other file opened: the data lies in this file, which
+  // cannot claim more data than it holds (deflate compresses at most 1032:1).
   template <typename T>
   std::vector<T> dataset(const char* name, const std::vector<hsize_t>& shape) {
     const std::string label = std::string("dataset '") + name + "'";
     return guarded(label, [&] {
       if (!file_.nameExists(name)) fail("missing " + label);
+      check_hard_link(name, label);
       const H5::DataSet dataset = file_.openDataSet(name);
       const H5::DataType type = dataset.getDataType();
       check_type(label, type, kClassOf<T>);
@@ -345,6 +364,7 @@ class Reader {
         fail(label + " has shape " + describe(extent) + ", the attributes require " + describe(shape));
       }
       const H5::DSetCreatPropList properties = dataset.getCreatePlist();
+      check_storage(label, properties);
       if (properties.getLayout() == H5D_CHUNKED) {
         std::vector<hsize_t> chunk(shape.size());
         properties.getChunk(static_cast<int>(chunk.size()), chunk.data());
@@ -352,9 +372,12 @@ class Reader {
           fail(label + " has chunks " + describe(chunk) + " larger than its shape " + describe(shape));
         }
       }
-      if (checksums_ && !has_checksum(properties)) fail(label + " has no checksum, which format_version 2 requires");
       const hsize_t bytes = element_count(shape) * type.getSize();
       const hsize_t stored_bytes = dataset.getStorageSize();
+      if (stored_bytes > file_bytes_) {
+        fail(label + " stores " + std::to_string(stored_bytes) + " bytes, more than the file's " +
+             std::to_string(file_bytes_) + " (corrupt chunk index?)");
+      }
       if (stored_bytes * kMaxDeflateRatio < bytes) {
         fail(label + " stores " + std::to_string(stored_bytes) + " bytes, too few for its " + std::to_string(bytes) +
              " (truncated or corrupt file?)");
@@ -398,6 +421,36 @@ class Reader {
     return out.str();
   }
 
+  // Object `name` is a hard link: a soft or external link could lead to another file (a FIFO, a device).
+  void check_hard_link(const char* name, const std::string& label) const {
+    H5L_info_t link{};
+    if (H5Lget_info(file_.getId(), name, &link, H5P_DEFAULT) < 0) fail(label + " has an unreadable link");
+    if (link.type != H5L_TYPE_HARD) {
+      fail(label + (link.type == H5L_TYPE_SOFT ? " is a soft link" : " is an external link") +
+           "; a transport file holds its datasets itself");
+    }
+  }
+
+  // The data is stored in this file (no external raw data files, no virtual dataset's source files), through
+  // HDF5's built-in filters, with checksums when the version requires them.
+  void check_storage(const std::string& label, const H5::DSetCreatPropList& properties) const {
+    const H5D_layout_t layout = properties.getLayout();
+    if (layout != H5D_CHUNKED && layout != H5D_CONTIGUOUS && layout != H5D_COMPACT) {
+      fail(label + " is a virtual dataset; a transport file holds its data itself");
+    }
+    if (properties.getExternalCount() > 0) {
+      fail(label + " keeps its data in external files; a transport file holds its data itself");
+    }
+    const auto ids = filters(properties);
+    const auto other = std::find_if_not(ids.begin(), ids.end(), built_in);
+    if (other != ids.end()) {
+      fail(label + " uses HDF5 filter " + std::to_string(*other) + ", which is not one of HDF5's built-in filters");
+    }
+    if (checksums_ && std::find(ids.begin(), ids.end(), H5Z_FILTER_FLETCHER32) == ids.end()) {
+      fail(label + " has no checksum, which format_version 2 requires");
+    }
+  }
+
   void check_type(const std::string& label, const H5::DataType& type, H5T_class_t type_class) const {
     if (type.getClass() != type_class) {
       fail(label + " is " + class_name(type.getClass()) + ", expected " + class_name(type_class));
@@ -433,10 +486,12 @@ class Reader {
                     [](const std::string& error) { return error.find("checksum") != std::string::npos; })) {
       fail(object + " fails its checksum (the file is corrupt)");
     }
-    fail(object + " is unreadable (truncated or corrupt file?): HDF5: " + (stack.empty() ? detail : stack.back()));
+    fail(object + " is unreadable (truncated or corrupt file?): HDF5: " +
+         excerpt(stack.empty() ? detail : stack.back(), kMaxQuotedHdf5Chars));
   }
 
   fs::path path_;
+  std::uintmax_t file_bytes_ = 0;
   Hdf5Errors errors_;
   H5::H5File file_;
   bool checksums_ = false;
@@ -556,6 +611,11 @@ CompressedTransport read_transport(const fs::path& file) {
     reader.fail("camera_width x camera_height x entries_per_pixel = " + std::to_string(entries) + " exceeds " +
                 std::to_string(kMaxTransportEntries));
   }
+  // indices and weights per entry; correspondence, decoded, flags, direct_energy, white and gray_x/y per pixel
+  const double transport_bytes = 8.0 * static_cast<double>(entries) + 33.0 * setup.camera_size.area();
+  check_memory(transport_bytes, file.string() + ": its " + std::to_string(setup.camera_size.width) + "x" +
+                                    std::to_string(setup.camera_size.height) + " camera pixels of " +
+                                    std::to_string(setup.entries_per_pixel) + " entries");
   setup.thresholds.black = static_cast<float>(reader.finite("black_threshold"));
   setup.thresholds.white = static_cast<float>(reader.finite("white_threshold"));
   setup.thresholds.noise = static_cast<float>(reader.finite("noise_threshold"));
@@ -564,8 +624,8 @@ CompressedTransport read_transport(const fs::path& file) {
   transport.setup = setup;
   const std::string protocol = reader.string("protocol");
   if (protocol != transport.protocol()) {
-    reader.fail("attribute 'protocol' is '" + protocol + "', dot_spacing " + std::to_string(setup.dot_spacing) +
-                " means '" + transport.protocol() + "'");
+    reader.fail("attribute 'protocol' is '" + excerpt(protocol) + "', dot_spacing " +
+                std::to_string(setup.dot_spacing) + " means '" + transport.protocol() + "'");
   }
   const Shapes shapes(setup);
   transport.indices = reader.dataset<std::int32_t>("indices", shapes.entries);

@@ -1,10 +1,12 @@
 // Construction of an empty compressed transport (on huge pages, host/core/huge_pages.h); the kernels' build options.
 #include "host/transport/transport_types.h"
 
+#include <cstdint>
 #include <limits>
 #include <utility>
 
 #include "host/core/huge_pages.h"
+#include "kernels/common/lanes.h"
 
 namespace rfrecon::transport {
 
@@ -43,6 +45,11 @@ CompressedTransport make_empty_transport(const TransportSetup& setup, Compressed
   CompressedTransport transport = make_empty_decoding(setup, std::move(storage));
   add_empty_rows(transport);
   return transport;
+}
+
+std::size_t transport_private_bytes(int entries_per_pixel) {
+  constexpr std::size_t kLaneBytes = RF_LANES * (sizeof(std::int32_t) + sizeof(float));
+  return (static_cast<std::size_t>(entries_per_pixel) + RF_FRAME_BATCH) * kLaneBytes;
 }
 
 std::string transport_build_options(int entries_per_pixel, const std::string& extra) {

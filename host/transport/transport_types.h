@@ -85,6 +85,11 @@ std::string transport_build_options(int entries_per_pixel, const std::string& ex
 std::vector<cl::ProgramRequest> transport_programs(const TransportSetup& setup, KernelEntry entry,
                                                    const std::string& extra = {});
 
+// The private arrays of one NDRange work-item of the transport kernels, in bytes: the compression's RF_LANES ELL rows
+// of K entries and its batch's RF_FRAME_BATCH samples and thresholds (an int and a float per lane each), the largest
+// of them. What bounds a CPU work-group (cl::private_work_group).
+std::size_t transport_private_bytes(int entries_per_pixel);
+
 // Compressed T: row c = camera pixel y * W + x, column q = projector pixel y * Wp + x. Entry k of row c is at
 // c * K + k, strongest first; index -1 (weight 0) marks an empty slot. Weights are T's values: linear camera
 // response to the projector pixel at full level, black frame subtracted.

@@ -14,11 +14,12 @@ namespace fs = std::filesystem;
 namespace {
 constexpr const char* kObjectsFile = "objects.json";
 
-// The truth folder of `dir`: dir itself when it holds depth.tiff, else dir/truth.
+// The truth folder of `dir`: dir itself when it holds depth.tiff, else dir/truth. A depth.tiff that is not a
+// regular file still names the folder: its reader then says what it is.
 fs::path locate_truth(const fs::path& dir) {
   std::error_code ec;
-  if (fs::is_regular_file(dir / "depth.tiff", ec)) return dir;
-  if (fs::is_regular_file(dir / "truth" / "depth.tiff", ec)) return dir / "truth";
+  if (fs::exists(dir / "depth.tiff", ec)) return dir;
+  if (fs::exists(dir / "truth" / "depth.tiff", ec)) return dir / "truth";
   if (fs::is_directory(dir / "truth" / "pose_00", ec) || fs::is_directory(dir / "pose_00", ec)) {
     throw InputError(dir.string() +
                      ": a multi-view rendering (one truth folder per view); name one view's folder, "
@@ -30,21 +31,32 @@ fs::path locate_truth(const fs::path& dir) {
                    "nor a `rfrecon simulate` output directory holding one in truth/");
 }
 
+// objects[index].key of `file` as T (json_as: an integer out of range is refused, not converted).
+template <typename T>
+T object_field(const nlohmann::json& entry, const char* key, std::size_t index, const fs::path& file) {
+  const std::string where = file.string() + ": objects[" + std::to_string(index) + "]." + key;
+  if (!entry.is_object() || !entry.contains(key)) throw InputError(where + ": missing");
+  std::string problem;
+  auto value = json_as<T>(entry.at(key), problem);
+  if (!value) throw InputError(where + ": must be " + problem);
+  return std::move(*value);
+}
+
 std::vector<TruthObject> read_objects(const fs::path& file) {
   const auto json = read_json_file(file);
+  if (!json.is_object() || !json.contains("objects") || !json.at("objects").is_array()) {
+    throw InputError(file.string() + ": no \"objects\" array (not the objects.json of `rfrecon simulate`)");
+  }
   std::vector<TruthObject> objects;
-  try {
-    for (const auto& entry : json.at("objects")) {
-      TruthObject object;
-      object.label = entry.at("label").get<int>();
-      object.name = entry.at("name").get<std::string>();
-      object.shape = entry.at("shape").get<std::string>();
-      object.size_mm = entry.at("size_mm").get<double>();
-      object.size_rule = entry.at("size_rule").get<std::string>();
-      objects.push_back(std::move(object));
-    }
-  } catch (const nlohmann::json::exception& error) {
-    throw InputError(file.string() + ": " + error.what());
+  const auto& entries = json.at("objects");
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    TruthObject object;
+    object.label = object_field<int>(entries[i], "label", i, file);
+    object.name = object_field<std::string>(entries[i], "name", i, file);
+    object.shape = object_field<std::string>(entries[i], "shape", i, file);
+    object.size_mm = object_field<double>(entries[i], "size_mm", i, file);
+    object.size_rule = object_field<std::string>(entries[i], "size_rule", i, file);
+    objects.push_back(std::move(object));
   }
   return objects;
 }

@@ -1,10 +1,13 @@
 // Calibration building blocks on exactly known synthetic inputs: corner detection on a projected board, dual-image
-// hole filling, corner-order alignment, and the degenerate-pose check.
+// hole filling, corner-order alignment, a board larger than the one given, and the degenerate-pose and undetermined-
+// intrinsics checks.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "calib/board_detection.h"
+#include "calib/board_overhang.h"
 #include "calib/camera_calibration.h"
 #include "calib/pose_observation.h"
 #include "host/core/errors.h"
@@ -89,6 +92,61 @@ TEST(BoardDetectionTest, NoBoardGivesNoCorners) {
   EXPECT_TRUE(find_board_corners(cv::Mat(480, 640, CV_8U, cv::Scalar(100)), kBoard).empty());
 }
 
+// The corners of the rendered 9x6 board (exact projections) without some of its outer lines, as a detector finds a
+// smaller board inside the printed one: the squares beyond show each line left out, and the check names the view,
+// the evidence and the board it is. The whole grid's border squares end at the white margin: no overhang.
+TEST(BoardOverhangTest, EachLineOfCornersLeftOutIsCounted) {
+  const cv::Vec3d rvec(0.3, -0.2, 0.05);
+  const cv::Vec3d tvec(-80, -50, 600);
+  const cv::Mat image = render_board(rvec, tvec);
+  const auto all = true_corners(rvec, tvec);
+  EXPECT_FALSE(board_overhang(image, kBoard, all).any());
+  const auto sub_grid = [&](int first_col, int first_row, const BoardSpec& board) {
+    std::vector<cv::Point2f> corners;
+    for (int row = first_row; row < first_row + board.rows; ++row) {
+      for (int col = first_col; col < first_col + board.cols; ++col) corners.push_back(all[row * kBoard.cols + col]);
+    }
+    return corners;
+  };
+  const BoardSpec inner{7, 5, 20.0};
+  const auto overhang = board_overhang(image, inner, sub_grid(1, 0, inner));
+  EXPECT_EQ(overhang.before_first_column, 1) << overhang.describe();
+  EXPECT_EQ(overhang.after_last_column, 1) << overhang.describe();
+  EXPECT_EQ(overhang.before_first_row, 0) << overhang.describe();
+  EXPECT_EQ(overhang.after_last_row, 1) << overhang.describe();
+  try {
+    check_board_fits({{"view.png", overhang}}, inner, 1);
+    ADD_FAILURE() << "no error";
+  } catch (const ProcessingError& error) {
+    EXPECT_THAT(error.what(), ::testing::HasSubstr("--board 7x5: the printed board continues beyond"));
+    EXPECT_THAT(error.what(), ::testing::HasSubstr("view.png: 1 more column of corners before the first"));
+    EXPECT_THAT(error.what(), ::testing::HasSubstr("is it 9x6?"));
+  }
+  // Corners two lines short on one side: both lines are counted.
+  const BoardSpec narrower{7, 6, 20.0};
+  EXPECT_EQ(board_overhang(image, narrower, sub_grid(0, 0, narrower)).after_last_column, 2);
+}
+
+// Intrinsics with a deviation over a tenth of the focal length, or an RMS over 2 px, are refused with the evidence.
+TEST(IntrinsicsCheckTest, UndeterminedIntrinsicsAreRefusedWithTheEvidence) {
+  const cv::Mat camera_matrix(cv::Matx33d(800, 0, 320, 0, 800, 240, 0, 0, 1));
+  const cv::Mat good_std = (cv::Mat_<double>(1, 4) << 0.5, 0.5, 0.6, 0.6);
+  EXPECT_NO_THROW(check_intrinsics_determined("camera", camera_matrix, good_std, 0.2, {640, 480}, kBoard, 10));
+  const cv::Mat wide_std = (cv::Mat_<double>(1, 4) << 120.0, 0.5, 0.6, 0.6);
+  try {
+    check_intrinsics_determined("camera", camera_matrix, wide_std, 11.4, {640, 480}, kBoard, 10);
+    ADD_FAILURE() << "no error";
+  } catch (const ProcessingError& error) {
+    EXPECT_THAT(error.what(), ::testing::HasSubstr("--board 9x6 --square 20"));
+    EXPECT_THAT(error.what(), ::testing::HasSubstr("10 views"));
+    EXPECT_THAT(error.what(), ::testing::HasSubstr("fx 800.00 +- 120.00 px (15 %"));
+    EXPECT_THAT(error.what(), ::testing::HasSubstr("reprojection RMS 11.40 px"));
+    EXPECT_THAT(error.what(), ::testing::Not(::testing::HasSubstr("fy")));
+  }
+  EXPECT_THROW(check_intrinsics_determined("camera", -camera_matrix, good_std, 0.2, {640, 480}, kBoard, 10),
+               ProcessingError);
+}
+
 TEST(DualImageTest, HolesAreFilledWithoutMovingEdges) {
   // A vertical step edge at x = 20 with every third column unreached (moire-like gaps).
   cv::Mat dual(40, 40, CV_32F);
@@ -134,11 +192,16 @@ TEST(CornerOrderTest, ReversedProjectorCornersAreReordered) {
   const std::vector<cv::Point2f> camera{{10, 10}, {20, 10}, {30, 10}, {10, 20}, {20, 20}, {30, 20}};
   std::vector<cv::Point2f> projector;
   for (auto it = camera.rbegin(); it != camera.rend(); ++it) projector.push_back(*it + cv::Point2f(100, 50));
-  ASSERT_TRUE(calib::align_corner_order(camera, correspondence, projector));
+  ASSERT_EQ(calib::align_corner_order(camera, correspondence, projector), "");
   for (std::size_t i = 0; i < camera.size(); ++i) EXPECT_EQ(projector[i], camera[i] + cv::Point2f(100, 50));
+  // Dual-image corners a square (10 px) off in either order: the two detections found different parts of the board.
+  std::vector<cv::Point2f> shifted;
+  for (const auto& corner : camera) shifted.push_back(corner + cv::Point2f(110, 50));
+  EXPECT_THAT(calib::align_corner_order(camera, correspondence, shifted), ::testing::HasSubstr("cannot be put in"));
   // Without correspondences near the corners there is nothing to align with.
   correspondence.setTo(cv::Scalar::all(std::numeric_limits<float>::quiet_NaN()));
-  EXPECT_FALSE(calib::align_corner_order(camera, correspondence, projector));
+  EXPECT_THAT(calib::align_corner_order(camera, correspondence, projector),
+              ::testing::HasSubstr("no projector correspondence"));
 }
 
 TEST(CameraCalibrationTest, RecoversIntrinsicsFromExactCorners) {

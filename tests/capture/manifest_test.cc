@@ -7,9 +7,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
+#include <sys/stat.h>
 
 #include "host/core/errors.h"
 #include "tests/common/temp_dir.h"
+#include "tests/core/refusal_in_child.h"
 
 namespace rfrecon::capture {
 namespace {
@@ -91,6 +93,27 @@ TEST_F(ManifestTest, MalformedJsonAndFields) {
   expect_read_error("'frames' must be an array");
   std::ofstream(dir_ / kManifestFileName) << R"({"version": 1, "frames": []})";
   expect_read_error("missing field 'projector_size'");
+}
+
+TEST_F(ManifestTest, FifoManifestIsRefusedWithoutBlocking) {
+  ASSERT_EQ(::mkfifo((dir_ / kManifestFileName).c_str(), 0600), 0);
+  const std::string message = rfrecon::testing::refusal_in_child([&] { (void)read_manifest(dir_); });
+  EXPECT_THAT(message, HasSubstr((dir_ / kManifestFileName).string() + ": is a FIFO"));
+}
+
+TEST_F(ManifestTest, DeepOrLongInputIsRefusedQuotedCut) {
+  std::ofstream(dir_ / kManifestFileName) << std::string(100000, '[') << std::string(100000, ']');
+  expect_read_error("deeper than 64 levels");
+  const std::string name(10000, 'n');
+  std::ofstream(dir_ / kManifestFileName)
+      << R"({"version": 1, "projector_size": [32, 16], "frames": [{"file": ")" << name << R"(", "pattern": "white"}]})";
+  try {
+    (void)read_manifest(dir_);
+    FAIL() << "expected InputError";
+  } catch (const InputError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("10000 bytes"));
+    EXPECT_LT(std::string(error.what()).size(), (dir_ / kManifestFileName).string().size() + 250) << error.what();
+  }
 }
 
 TEST_F(ManifestTest, LinearizeUndoesBlackLevelAndGamma) {

@@ -15,9 +15,11 @@ struct CliResult {
 };
 
 // `arguments` go through the shell (quote paths with spaces). RFRECON_CLI_PATH is defined by rfrecon_add_test.
-inline CliResult run_cli(const std::string& arguments) {
+// `prefix`: a command the tool runs under, e.g. "timeout 60".
+inline CliResult run_cli(const std::string& arguments, const std::string& prefix = {}) {
   CliResult result;
-  FILE* pipe = ::popen((std::string(RFRECON_CLI_PATH) + " " + arguments + " 2>&1").c_str(), "r");
+  const std::string command = prefix + (prefix.empty() ? "" : " ") + RFRECON_CLI_PATH + " " + arguments + " 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
   if (pipe == nullptr) return result;
   std::array<char, 4096> buffer{};
   while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) result.output += buffer.data();

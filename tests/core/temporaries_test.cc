@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -67,10 +68,66 @@ TEST_F(TemporariesTest, AnAtomicFileCleansWhatAKilledRunLeft) {
 }
 
 TEST_F(TemporariesTest, RegisteredTemporariesAreRemovedOnRequest) {
-  const fs::path temporary = make_temporary(dir_ / "out.json", "tmp");
+  const fs::path temporary = make_temporary(dir_ / "out.json", TemporaryKind::kFile);
+  EXPECT_TRUE(fs::is_regular_file(temporary)) << "made with the name, under the registry's lock";
   std::ofstream(temporary) << "partial";
+  const fs::path staging = make_temporary(dir_ / "scan", TemporaryKind::kDirectory);
+  fs::create_directories(staging / "capture" / "pose_00");
+  std::ofstream(staging / "capture" / "pose_00" / "frame.png") << "frame";
   remove_registered_temporaries();
-  EXPECT_FALSE(fs::exists(temporary));
+  EXPECT_TRUE(fs::is_empty(dir_));
+}
+
+// Temporaries of a name near the file system's limit are shortened (with a hash of the whole name) to fit, and
+// the cleanup still knows them as that output's: not another long name's with the same beginning.
+TEST_F(TemporariesTest, ALongNamesTemporariesFitAndAreStillCleanedUp) {
+  const std::size_t limit = name_max(dir_);
+  const fs::path target = dir_ / std::string(limit, 'a');
+  const fs::path other = dir_ / (std::string(limit - 1, 'a') + "b");
+  const std::string prefix = temporary_prefix(target);
+  ASSERT_LT(prefix.size() + kMaxTemporarySuffix, limit + 1);
+  EXPECT_NE(prefix, temporary_prefix(other));
+  EXPECT_EQ(temporary_prefix(dir_ / "T.h5"), "T.h5");
+  const std::string dead = std::to_string(dead_pid());
+  const std::string stale = prefix + ".tmp-" + dead + "-0", staging = prefix + ".staging-" + dead + "-7";
+  const std::string others = temporary_prefix(other) + ".tmp-" + dead + "-0";
+  std::ofstream(dir_ / stale) << "partial";
+  fs::create_directories(dir_ / staging / "sub");
+  std::ofstream(dir_ / others) << "another output's";
+  const fs::path temporary = make_temporary(target, TemporaryKind::kFile);
+  EXPECT_LE(temporary.filename().string().size(), limit);
+  EXPECT_FALSE(fs::exists(dir_ / stale));
+  EXPECT_FALSE(fs::exists(dir_ / staging));
+  EXPECT_TRUE(fs::exists(dir_ / others));
+  fs::remove(temporary);
+  release_temporary(temporary);
+}
+
+// T.h5's image is written through an AtomicFile of T.h5's own temporary: the inner temporary is named after T.h5
+// (one suffix), so a kill -9 between the two renames leaves a name the cleanup knows. Nested names that earlier
+// versions made are recognised too.
+TEST_F(TemporariesTest, NestedTemporariesAreNamedAfterTheOutputAndCleanedUp) {
+  const std::string dead = std::to_string(dead_pid());
+  const std::string live = std::to_string(::getppid());
+  const std::string old_nested = "T.h5.tmp-" + dead + "-0.tmp-" + dead + "-1";
+  const std::string live_nested = "T.h5.tmp-" + dead + "-0.tmp-" + live + "-1";
+  std::ofstream(dir_ / old_nested) << "partial";
+  std::ofstream(dir_ / live_nested) << "a running process's";
+  {
+    AtomicFile outer(dir_ / "T.h5");
+    AtomicFile inner(outer.temp_path());
+    const std::string name = inner.temp_path().filename().string();
+    EXPECT_EQ(name.rfind("T.h5.tmp-" + std::to_string(::getpid()) + "-", 0), 0u) << name;
+    EXPECT_EQ(name.find(".tmp-"), name.rfind(".tmp-")) << "one suffix: " << name;
+    inner.write("whole");
+    inner.commit();
+    outer.commit();
+  }
+  EXPECT_FALSE(fs::exists(dir_ / old_nested));
+  EXPECT_TRUE(fs::exists(dir_ / live_nested));
+  fs::remove(dir_ / live_nested);
+  EXPECT_EQ(fs::file_size(dir_ / "T.h5"), 5u);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);
 }
 
 }  // namespace

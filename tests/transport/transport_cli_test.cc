@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <sys/stat.h>
 
 #include "host/capture/protocol.h"
 #include "host/cl/program_store.h"
@@ -222,6 +223,27 @@ TEST_F(TransportCliTest, BitDepthMismatchIsNamed) {
 TEST_F(TransportCliTest, UnreadableImageIsNamed) {
   std::ofstream(frame_path(3), std::ios::trunc) << "garbage";
   EXPECT_NE(transport_error().find(manifest_.frames[3].file), std::string::npos);
+}
+
+// Inputs are checked by stat(2) before anything opens them: a FIFO with no writer would block the command forever.
+TEST_F(TransportCliTest, AFrameOrATransportThatIsAFifoIsRefusedWithoutBlocking) {
+  fs::remove(frame_path(6));
+  ASSERT_EQ(::mkfifo(frame_path(6).c_str(), 0600), 0);
+  std::string message = transport_error();
+  EXPECT_NE(message.find(frame_path(6).string()), std::string::npos) << message;
+  EXPECT_NE(message.find("regular file"), std::string::npos) << message;
+
+  const fs::path fifo = dir_.path() / "fifo.h5";
+  const fs::path dual = dir_.path() / "dual.tif";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  message = "(no InputError)";
+  try {
+    run_cli({"dual", fifo.string(), "-o", dual.string()});
+  } catch (const InputError& error) {
+    message = error.what();
+  }
+  EXPECT_NE(message.find(fifo.string() + ": is a FIFO"), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(dual));
 }
 
 TEST_F(TransportCliTest, ManifestInconsistentWithProjectorSizeIsNamed) {

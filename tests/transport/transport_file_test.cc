@@ -13,6 +13,7 @@
 #include <H5Cpp.h>
 #include <gtest/gtest.h>
 #include <sys/mount.h>
+#include <sys/stat.h>
 
 #include "host/capture/protocol.h"
 #include "host/core/errors.h"
@@ -374,6 +375,92 @@ TEST_F(TransportFileTest, DatasetsHoldingLessThanTheyClaimFailBeforeAllocating) 
   EXPECT_LT(fs::file_size(file_), 100000u);
   const std::string message = read_error();
   EXPECT_TRUE(contains(message, "dataset 'indices' stores 0 bytes, too few for its 1073741824")) << message;
+}
+
+// stat(2) decides before HDF5 opens anything: opening a FIFO with no writer would wait forever.
+TEST_F(TransportFileTest, AFifoIsRefusedWithoutOpeningIt) {
+  ASSERT_EQ(::mkfifo(file_.c_str(), 0600), 0);
+  const std::string message = read_error();
+  EXPECT_TRUE(contains(message, "is a FIFO (a named pipe)")) << message;
+}
+
+// A dataset reached through a soft or external link, or keeping its data in external files: the reader refuses it
+// before HDF5 follows it, so another file (here a FIFO, which would block) is never opened.
+TEST_F(TransportFileTest, DatasetsMustLiveInTheFileItself) {
+  const fs::path fifo = dir_.path() / "elsewhere";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const struct {
+    std::function<void(H5::H5File&)> change;
+    std::string expected;
+  } cases[] = {
+      {[&](H5::H5File& h5) {
+         h5.unlink("weights");
+         ASSERT_GE(H5Lcreate_external(fifo.c_str(), "/weights", h5.getId(), "weights", H5P_DEFAULT, H5P_DEFAULT), 0);
+       },
+       "dataset 'weights' is an external link"},
+      {[&](H5::H5File& h5) {
+         h5.unlink("weights");
+         h5.link(H5L_TYPE_SOFT, "/indices", "weights");
+       },
+       "dataset 'weights' is a soft link"},
+      {[&](H5::H5File& h5) {
+         h5.unlink("flags");
+         const hsize_t shape[2] = {20, 24};
+         H5::DSetCreatPropList properties;
+         properties.setExternal(fifo.c_str(), 0, 20 * 24);
+         h5.createDataSet("flags", H5::PredType::NATIVE_UINT8, H5::DataSpace(2, shape), properties);
+       },
+       "dataset 'flags' keeps its data in external files"},
+  };
+  for (const auto& c : cases) {
+    write_transport(small_transport(), file_);
+    {
+      H5::H5File h5(file_.string(), H5F_ACC_RDWR);
+      c.change(h5);
+    }
+    const std::string message = read_error();
+    EXPECT_TRUE(contains(message, c.expected)) << message;
+  }
+}
+
+// A filter HDF5 does not have built in would make it search its plugin directories for a library to load.
+TEST_F(TransportFileTest, DatasetsWithFiltersThatAreNotBuiltInFail) {
+  write_transport(small_transport(), file_);
+  {
+    H5::H5File h5(file_.string(), H5F_ACC_RDWR);
+    h5.unlink("flags");
+    const hsize_t shape[2] = {20, 24};
+    H5::DSetCreatPropList properties;
+    properties.setChunk(2, shape);
+    properties.setFilter(32000, H5Z_FLAG_OPTIONAL);  // LZF's registered ID, which HDF5 itself lacks
+    properties.setFletcher32();
+    h5.createDataSet("flags", H5::PredType::NATIVE_UINT8, H5::DataSpace(2, shape), properties);
+  }
+  const std::string message = read_error();
+  EXPECT_TRUE(contains(message, "dataset 'flags' uses HDF5 filter 32000")) << message;
+}
+
+// Strings of any storage are at most 256 bytes; a variable-length one is read first (it cannot be longer than the
+// file), a fixed-length one is refused from its type. Messages quote a string attribute only in part.
+TEST_F(TransportFileTest, LongStringAttributesFailAndAreQuotedInPart) {
+  write_transport(small_transport(), file_);
+  const std::string long_text(100000, 'x');
+  const char* text = long_text.c_str();
+  replace_attribute(file_, "format", H5::StrType(H5::PredType::C_S1, H5T_VARIABLE), &text);
+  std::string message = read_error();
+  EXPECT_TRUE(contains(message, "attribute 'format' is a string of 100000 bytes, more than 256")) << message;
+
+  replace_attribute(file_, "format", H5::StrType(H5::PredType::C_S1, long_text.size()), text);
+  message = read_error();
+  EXPECT_TRUE(contains(message, "attribute 'format' is a string of 100000 bytes, more than 256")) << message;
+
+  write_transport(small_transport(), file_);
+  const std::string protocol(250, 'p');
+  replace_attribute(file_, "protocol", H5::StrType(H5::PredType::C_S1, protocol.size()), protocol.c_str());
+  message = read_error();
+  EXPECT_TRUE(contains(message, "attribute 'protocol' is 'ppp")) << message;
+  EXPECT_TRUE(contains(message, "(250 bytes)")) << message;
+  EXPECT_LT(message.size(), file_.string().size() + 200) << message;
 }
 
 TEST_F(TransportFileTest, UnwritableOutputsFailNamingThePathAndLeaveNothing) {

@@ -1,0 +1,128 @@
+// Mesh and scene files are refused by name before anything is allocated for what they declare: counts that cannot
+// fit in the file or pass the limits, formats other than PLY and OBJ, inputs that are not regular files.
+#include "sim/mesh_file.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include "host/core/errors.h"
+#include "host/core/limits.h"
+#include "sim/builtin_scenes.h"
+#include "sim/objects.h"
+#include "sim/scene.h"
+#include "tests/common/temp_dir.h"
+#include "tests/core/refusal_in_child.h"
+
+namespace rfrecon::sim {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+const std::string kTriangleVertices = "0 0 0\n1 0 0\n0 1 0\n";
+
+class MeshFileTest : public ::testing::Test {
+ protected:
+  fs::path write(const std::string& name, const std::string& bytes) const {
+    const fs::path file = dir_ / name;
+    std::ofstream(file, std::ios::binary) << bytes;
+    return file;
+  }
+
+  static std::string ply_header(const std::string& format, const std::string& vertices, const std::string& faces,
+                                const std::string& count_type = "uchar") {
+    return "ply\nformat " + format + " 1.0\ncomment test\nelement vertex " + vertices +
+           "\nproperty float x\nproperty float y\nproperty float z\nelement face " + faces + "\nproperty list " +
+           count_type + " int vertex_indices\nend_header\n";
+  }
+
+  // The InputError of load_mesh in a child process (tests/core/refusal_in_child.h).
+  static std::string mesh_error(const fs::path& file) {
+    return rfrecon::testing::refusal_in_child([&] { (void)load_mesh(file.string(), 1.0, "objects[0].file"); });
+  }
+
+  rfrecon::testing::TempDir temp_{"mesh_file"};
+  const fs::path dir_ = temp_.path();
+};
+
+TEST_F(MeshFileTest, SmallPlyAndObjLoad) {
+  const auto ascii =
+      load_mesh(write("a.ply", ply_header("ascii", "3", "1") + kTriangleVertices + "3 0 1 2\n").string(), 2.0, "f");
+  EXPECT_EQ(ascii->triangles.size(), 1u);
+  std::string binary = ply_header("binary_little_endian", "3", "1");
+  for (const float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f})
+    binary.append(reinterpret_cast<const char*>(&v), 4);
+  binary += '\3';
+  for (const std::int32_t i : {0, 1, 2}) binary.append(reinterpret_cast<const char*>(&i), 4);
+  EXPECT_EQ(load_mesh(write("b.ply", binary).string(), 1.0, "f")->triangles.size(), 1u);
+  EXPECT_EQ(
+      load_mesh(write("q.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").string(), 1.0, "f")->triangles.size(),
+      2u);
+}
+
+TEST_F(MeshFileTest, HugeDeclaredCountsAreRefusedBeforeAllocating) {
+  // Each is a file of under 300 bytes; assimp would reserve gigabytes for it.
+  const fs::path over_limit = write("over.ply", ply_header("ascii", "4000000000", "1") + kTriangleVertices);
+  EXPECT_THAT(mesh_error(over_limit), HasSubstr("declares 4000000000 'vertex' elements, over the limit of " +
+                                                std::to_string(kMaxMeshElements)));
+  EXPECT_THAT(mesh_error(write("unfit.ply", ply_header("binary_little_endian", "4000000", "1"))),
+              HasSubstr("need at least"));
+  std::string long_list = ply_header("binary_little_endian", "0", "1", "uint");
+  long_list += std::string(4, '\xff');
+  EXPECT_THAT(mesh_error(write("list.ply", long_list)), HasSubstr("a list of 4294967295 items"));
+  EXPECT_THAT(mesh_error(write("ascii_list.ply",
+                               ply_header("ascii", "3", "1", "uint") + kTriangleVertices + "3000000000 0 1\n")),
+              HasSubstr("a list of 3000000000 items"));
+  // A length beyond its declared type (uchar), and a NUL that would split tokens differently in assimp's parser.
+  EXPECT_THAT(mesh_error(write("ascii_uchar.ply", ply_header("ascii", "3", "1") + kTriangleVertices + "300 0 1\n")),
+              HasSubstr("does not fit its declared 1-byte type"));
+  EXPECT_THAT(mesh_error(write("ascii_nul.ply",
+                               ply_header("ascii", "3", "1") + kTriangleVertices + std::string("3 0\0 1 2\n", 9))),
+              HasSubstr("holds the byte \\x00"));
+  const fs::path message_file = write("named.ply", ply_header("ascii", "4000000000", "1"));
+  const std::string message = mesh_error(message_file);
+  EXPECT_THAT(message, HasSubstr("objects[0].file"));
+  EXPECT_THAT(message, HasSubstr(message_file.string()));
+}
+
+TEST_F(MeshFileTest, TrianglesAfterTriangulationAreCapped) {
+  std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf";
+  for (std::uint32_t i = 0; i < kMaxMeshElements + 3; ++i) obj += " 1";
+  EXPECT_THAT(mesh_error(write("fan.obj", obj + "\n")), HasSubstr("triangles, over the limit"));
+}
+
+TEST_F(MeshFileTest, OnlyDocumentedFormatsAndRegularFilesAreRead) {
+  EXPECT_THAT(mesh_error(write("box.stl", "solid box\nendsolid box\n")), HasSubstr("not .ply or .obj"));
+  const fs::path fifo = dir_ / "box.obj";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_THAT(mesh_error(fifo), HasSubstr("FIFO"));
+  // A material library the OBJ names is never opened: a FIFO there would block.
+  const fs::path mtl_fifo = dir_ / "box.mtl";
+  ASSERT_EQ(::mkfifo(mtl_fifo.c_str(), 0600), 0);
+  const fs::path with_mtl = write("with_mtl.obj", "mtllib box.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_EQ(mesh_error(with_mtl), "(no InputError)");
+}
+
+TEST_F(MeshFileTest, SceneInputsAreBoundedAndQuotedCut) {
+  const fs::path fifo = dir_ / "scene.json";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_THAT(rfrecon::testing::refusal_in_child([&] { (void)resolve_scene(fifo.string()); }),
+              HasSubstr(fifo.string() + ": is a FIFO"));
+  const std::string key(5000, 'k');
+  const fs::path long_key = write("long_key.json", "{\"" + key + "\": 1}");
+  const std::string message = rfrecon::testing::refusal_in_child([&] { (void)load_scene_file(long_key); });
+  EXPECT_THAT(message, HasSubstr("unknown field"));
+  EXPECT_LT(message.size(), long_key.string().size() + 250) << message;
+  const fs::path deep = write("deep.json", "{\"objects\": " + std::string(100000, '[') + "}");
+  EXPECT_THAT(rfrecon::testing::refusal_in_child([&] { (void)load_scene_file(deep); }),
+              HasSubstr("deeper than " + std::to_string(kMaxNestingDepth)));
+}
+
+}  // namespace
+}  // namespace rfrecon::sim
