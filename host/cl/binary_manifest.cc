@@ -51,16 +51,6 @@ constexpr FieldType kFields[] = {
     {"sources", nlohmann::json::value_t::array, "an array of file names"},
 };
 
-// Empty when `path` is a regular file; else `missing` when there is nothing there, or what is there (a FIFO would
-// block the read).
-std::string regular_file_problem(const std::filesystem::path& path, const std::string& missing) {
-  std::error_code ec;
-  const std::filesystem::file_status status = std::filesystem::status(path, ec);
-  if (std::filesystem::is_regular_file(status)) return "";
-  return std::filesystem::exists(status) ? "is " + kind_of_file(status) + "; rfrecon reads only regular files"
-                                         : missing;
-}
-
 void check_format(const std::filesystem::path& file, const nlohmann::json& manifest) {
   if (!manifest.is_object()) fail(file, "", "not a JSON object");
   for (const auto& field : kFields) {
@@ -115,10 +105,10 @@ ManifestExpectation host_manifest_expectation(const DeviceInfo& info) {
 
 BinaryManifest check_binary_manifest(const std::filesystem::path& binary, const ManifestExpectation& expected) {
   const std::filesystem::path file = binary.string() + ".json";
-  if (const auto problem = regular_file_problem(binary, "no such kernel binary"); !problem.empty()) {
+  if (const auto problem = input_file_problem(binary, "no such kernel binary"); !problem.empty()) {
     fail(binary, "", problem);
   }
-  if (const auto problem = regular_file_problem(
+  if (const auto problem = input_file_problem(
           file, "missing: every board binary needs the manifest its hw/ flow writes beside it (docs/fpga.md)");
       !problem.empty()) {
     fail(file, "", problem);

@@ -1,4 +1,4 @@
-// Regular-file and directory checks of inputs by stat(2), before anything opens them.
+// Regular-file checks of inputs by stat(2), before anything opens them.
 #include "host/core/input_file.h"
 
 #include <system_error>
@@ -30,20 +30,18 @@ std::string kind_of_file(const fs::file_status& status) {
   }
 }
 
-void check_input_file(const fs::path& file) {
+std::string input_file_problem(const fs::path& file, const std::string& when_missing) {
   std::error_code ec;
   const fs::file_status status = fs::status(file, ec);
-  if (fs::is_regular_file(status)) return;
-  if (!fs::exists(status)) throw InputError(file.string() + ": missing");
-  throw InputError(file.string() + ": is " + kind_of_file(status) + "; rfrecon reads only regular files");
+  if (fs::is_regular_file(status)) return "";
+  if (!fs::exists(status)) return when_missing;
+  return "is " + kind_of_file(status) + "; rfrecon reads only regular files";
 }
 
-void check_input_directory(const fs::path& directory) {
-  std::error_code ec;
-  const fs::file_status status = fs::status(directory, ec);
-  if (fs::is_directory(status)) return;
-  if (!fs::exists(status)) throw InputError(directory.string() + ": missing");
-  throw InputError(directory.string() + ": is " + kind_of_file(status) + ", not a directory");
+void check_input_file(const fs::path& file) {
+  if (const std::string problem = input_file_problem(file); !problem.empty()) {
+    throw InputError(file.string() + ": " + problem);
+  }
 }
 
 }  // namespace rfrecon
