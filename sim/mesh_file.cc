@@ -79,8 +79,15 @@ PlyProperty parse_ply_property(std::istringstream& words, const Fail& fail) {
   return property;
 }
 
-// An element count: decimal digits, at most kMaxMeshElements.
+// An element count: decimal digits, at most kMaxMeshElements. The element's name must be an identifier (a letter or
+// "_", then letters, digits or "_"): assimp reads the count of an element it does not know from the start of its
+// name, so "123face 4" would declare 123 elements there and 4 here.
 std::uint64_t parse_ply_count(const std::string& name, const std::string& count, const Fail& fail) {
+  if (name.empty() || std::isdigit(static_cast<unsigned char>(name[0])) != 0 ||
+      !std::all_of(name.begin(), name.end(),
+                   [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; })) {
+    fail("the element name '" + excerpt(name) + "' is not an identifier (letters, digits and _, not first a digit)");
+  }
   if (count.empty() || count.size() > 19 || !std::all_of(count.begin(), count.end(), [](char c) {
         return std::isdigit(static_cast<unsigned char>(c)) != 0;
       })) {
@@ -273,9 +280,10 @@ bool obj_word_fits(const std::string& word, bool corner) {
          (!corner || std::count(word.begin(), word.end(), '/') <= 2);
 }
 
-// Checks an OBJ line by line before assimp, whose OBJ parser crashes on some malformed text: printable ASCII only,
-// statements v, vt, vn, vp (numbers), f, l, p (corners), o, g, s, usemtl, mtllib and comments; then counts the
-// vertices and the triangles of the faces (lines joined where one ends in "\").
+// Checks an OBJ line by line before assimp, whose OBJ parser crashes on some malformed text (a NUL even in a comment):
+// no control bytes but tabs, only ASCII outside comments, statements v, vt, vn, vp (numbers), f, l, p (corners), o, g,
+// s, usemtl, mtllib and comments; then counts the vertices and the triangles of the faces (lines joined where one
+// ends in "\").
 void check_obj(const std::string& bytes, const Fail& fail) {
   static const std::set<std::string> kNumbers{"v", "vt", "vn", "vp"}, kCorners{"f", "l", "p"},
       kNames{"o", "g", "s", "usemtl", "mtllib"};
@@ -286,10 +294,14 @@ void check_obj(const std::string& bytes, const Fail& fail) {
   for (std::string line; std::getline(lines, line);) {
     ++line_number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    const std::string text = line.substr(0, line.find('#'));
-    if (std::any_of(text.begin(), text.end(), [](char c) { return (c < ' ' || c > '~') && c != '\t'; })) {
-      fail("line " + std::to_string(line_number) + ": a byte that is not printable ASCII (not an OBJ text file?)");
+    const std::size_t comment = std::min(line.find('#'), line.size());
+    const auto control = [](char c) { return (c >= 0 && c < ' ' && c != '\t') || c == '\x7f'; };
+    if (std::any_of(line.begin(), line.end(), control) ||
+        std::any_of(line.begin(), line.begin() + static_cast<std::ptrdiff_t>(comment), [](char c) { return c < 0; })) {
+      fail("line " + std::to_string(line_number) +
+           ": a control byte, or a byte that is not ASCII outside a comment (not an OBJ text file?)");
     }
+    const std::string text = line.substr(0, comment);
     if (!text.empty() && text.back() == '\\') {
       statement += text.substr(0, text.size() - 1) + " ";
       continue;

@@ -91,6 +91,19 @@ TEST_F(MeshFileTest, HugeDeclaredCountsAreRefusedBeforeAllocating) {
   EXPECT_THAT(message, HasSubstr(message_file.string()));
 }
 
+TEST_F(MeshFileTest, TextAssimpMisreadsIsRefused) {
+  // assimp takes an unknown element's count from the start of its name: 2222222222 here, not 4.
+  std::string digits_name = ply_header("ascii", "3", "1") + kTriangleVertices + "3 0 1 2\n";
+  digits_name.replace(digits_name.find("element face"), 12, "element 2222222222face");
+  EXPECT_THAT(mesh_error(write("digits.ply", digits_name)), HasSubstr("is not an identifier"));
+  // A NUL in an OBJ comment crashed assimp's OBJ parser; UTF-8 in a comment is text and loads.
+  const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  EXPECT_THAT(mesh_error(write("nul.obj", std::string("# a\0b\nmtllib x.mtl\n", 18) + triangle)),
+              HasSubstr("line 1: a control byte"));
+  EXPECT_EQ(mesh_error(write("utf8.obj", "# caf\xc3\xa9 by J\xc3\xb6rg\n" + triangle)), "(no InputError)");
+  EXPECT_THAT(mesh_error(write("latin.obj", "g caf\xc3\xa9\n" + triangle)), HasSubstr("not ASCII outside a comment"));
+}
+
 TEST_F(MeshFileTest, TrianglesAfterTriangulationAreCapped) {
   std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf";
   for (std::uint32_t i = 0; i < kMaxMeshElements + 3; ++i) obj += " 1";
