@@ -1,8 +1,10 @@
-// The checks of a mesh file before assimp: a PLY's header and element layout walked, an OBJ's statements counted.
+// The checks of a mesh file before assimp: a PLY's header and element layout walked, an OBJ's geometry kept.
 #include "sim/mesh_file.h"
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string_view>
@@ -156,6 +158,7 @@ class PlyBody {
   void walk(const PlyElement& element) {
     check_room(element);
     for (std::uint64_t i = 0; i < element.count; ++i) {
+      if (ascii_) begin_line();
       for (const PlyProperty& property : element.properties) {
         if (property.count_bytes == 0) {
           skip_values(1, property.value_bytes);
@@ -168,6 +171,7 @@ class PlyBody {
           fail_("its faces make more than " + std::to_string(kMaxMeshElements) + " triangles, " + limit_text());
         }
       }
+      if (ascii_) end_line(element);
     }
   }
 
@@ -204,18 +208,53 @@ class PlyBody {
     }
   }
 
-  // The next ASCII token.
+  // An ASCII body holds one element per line, as assimp reads it: a line that ends early or holds more would be split
+  // one way here and another way there (a list length read from the next line).
+  std::string line_number() const {
+    return std::to_string(std::count(bytes_.begin(), bytes_.begin() + static_cast<std::ptrdiff_t>(at_), '\n') + 1);
+  }
+
+  void skip_blanks() {
+    while (at_ < bytes_.size() && (bytes_[at_] == ' ' || bytes_[at_] == '\t' || bytes_[at_] == '\r')) ++at_;
+  }
+
+  void begin_line() {
+    skip_blanks();
+    if (at_ == bytes_.size()) truncated();
+    if (bytes_[at_] == '\n') fail_("line " + line_number() + " is blank (an ASCII PLY holds one element per line)");
+  }
+
+  void end_line(const PlyElement& element) {
+    skip_blanks();
+    if (at_ < bytes_.size() && bytes_[at_] != '\n') {
+      fail_("line " + line_number() + " holds more values than a '" + excerpt(element.name) +
+            "' element has properties (an ASCII PLY holds one element per line)");
+    }
+    if (at_ < bytes_.size()) ++at_;
+  }
+
+  // The next ASCII token of the current line.
   std::string_view token() {
-    while (at_ < bytes_.size() && std::isspace(static_cast<unsigned char>(bytes_[at_]))) ++at_;
+    skip_blanks();
+    if (at_ == bytes_.size()) truncated();
+    if (bytes_[at_] == '\n') {
+      fail_("line " + line_number() +
+            " ends before its element's properties (an ASCII PLY holds one element per line)");
+    }
     const std::size_t start = at_;
     while (at_ < bytes_.size() && !std::isspace(static_cast<unsigned char>(bytes_[at_]))) ++at_;
-    if (at_ == start) truncated();
     return std::string_view(bytes_).substr(start, at_ - start);
   }
 
   void skip_values(std::uint64_t count, int value_bytes) {
     if (ascii_) {
-      for (std::uint64_t i = 0; i < count; ++i) (void)token();
+      for (std::uint64_t i = 0; i < count; ++i) {
+        const std::string_view text = token();
+        if (text.find_first_not_of("0123456789+-.eE") != std::string_view::npos ||
+            text.find_first_of("0123456789") == std::string_view::npos) {
+          fail_("line " + line_number() + ": '" + excerpt(text) + "' is not a number");
+        }
+      }
       return;
     }
     if (count > left() / static_cast<std::uint64_t>(value_bytes)) truncated();
@@ -280,15 +319,19 @@ bool obj_word_fits(const std::string& word, bool corner) {
          (!corner || std::count(word.begin(), word.end(), '/') <= 2);
 }
 
-// Checks an OBJ line by line before assimp, whose OBJ parser crashes on some malformed text (a NUL even in a comment):
-// no control bytes but tabs, only ASCII outside comments, statements v, vt, vn, vp (numbers), f, l, p (corners), o, g,
-// s, usemtl, mtllib and comments; then counts the vertices and the triangles of the faces (lines joined where one
-// ends in "\").
-void check_obj(const std::string& bytes, const Fail& fail) {
-  static const std::set<std::string> kNumbers{"v", "vt", "vn", "vp"}, kCorners{"f", "l", "p"},
-      kNames{"o", "g", "s", "usemtl", "mtllib"};
+// The geometry of an OBJ, checked line by line, as the text assimp is given: assimp's OBJ parser crashes on some
+// malformed text (a NUL even in a comment, a material library line continued with "\"), so it reads only the
+// statements v, vt, vn, vp (numbers) and f, l, p (corners), one per line, each with a number of values it takes.
+// Comments and o, g, s, usemtl, mtllib are dropped (rfrecon takes the geometry only); no control bytes but tabs, only
+// ASCII outside comments; lines joined where one ends in "\". Counts the vertices and the triangles of the faces.
+std::string obj_geometry(const std::string& bytes, const Fail& fail) {
+  // Each statement's keyword with the fewest and most values it may hold.
+  static const std::map<std::string, std::pair<std::uint64_t, std::uint64_t>> kArity{
+      {"v", {3, 7}},          {"vt", {1, 3}},         {"vn", {3, 3}},        {"vp", {1, 3}},
+      {"f", {3, UINT64_MAX}}, {"l", {2, UINT64_MAX}}, {"p", {1, UINT64_MAX}}};
+  static const std::set<std::string> kDropped{"o", "g", "s", "usemtl", "mtllib"};
   std::uint64_t vertices = 0, triangles = 0;
-  std::string statement;
+  std::string geometry, statement;
   std::istringstream lines(bytes);
   int line_number = 0;
   for (std::string line; std::getline(lines, line);) {
@@ -310,23 +353,33 @@ void check_obj(const std::string& bytes, const Fail& fail) {
     statement.clear();
     std::string keyword;
     words >> keyword;
-    if (keyword.empty() || kNames.count(keyword) != 0) continue;
-    const bool corners = kCorners.count(keyword) != 0;
-    if (!corners && kNumbers.count(keyword) == 0) {
+    if (keyword.empty() || kDropped.count(keyword) != 0) continue;
+    const auto arity = kArity.find(keyword);
+    if (arity == kArity.end()) {
       fail("line " + std::to_string(line_number) + ": '" + excerpt(keyword) + "' is not an OBJ statement read");
     }
+    const bool corners = keyword == "f" || keyword == "l" || keyword == "p";
     std::uint64_t count = 0;
+    geometry += keyword;
     for (std::string word; words >> word; ++count) {
       if (!obj_word_fits(word, corners)) {
         fail("line " + std::to_string(line_number) + ": '" + excerpt(word) + "' is not " +
              (corners ? "a face corner" : "a number"));
       }
+      geometry += ' ' + word;
+    }
+    geometry += '\n';
+    if (count < arity->second.first || count > arity->second.second) {
+      fail("line " + std::to_string(line_number) + ": '" + keyword + "' with " + std::to_string(count) +
+           " values (it takes " + std::to_string(arity->second.first) +
+           (arity->second.second == UINT64_MAX ? " or more" : " to " + std::to_string(arity->second.second)) + ")");
     }
     vertices += keyword == "v" ? 1 : 0;
-    triangles += keyword == "f" && count > 2 ? count - 2 : 0;
+    triangles += keyword == "f" ? count - 2 : 0;
   }
   if (vertices > kMaxMeshElements) fail(std::to_string(vertices) + " vertices, " + limit_text());
   if (triangles > kMaxMeshElements) fail("its faces make " + std::to_string(triangles) + " triangles, " + limit_text());
+  return geometry;
 }
 
 }  // namespace
@@ -343,7 +396,7 @@ MeshFile read_mesh_file(const std::filesystem::path& file, const std::string& fi
   if (mesh.format == "ply") {
     check_ply(mesh.bytes, fail);
   } else {
-    check_obj(mesh.bytes, fail);
+    mesh.bytes = obj_geometry(mesh.bytes, fail);
   }
   return mesh;
 }

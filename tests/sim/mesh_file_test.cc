@@ -104,6 +104,35 @@ TEST_F(MeshFileTest, TextAssimpMisreadsIsRefused) {
   EXPECT_THAT(mesh_error(write("latin.obj", "g caf\xc3\xa9\n" + triangle)), HasSubstr("not ASCII outside a comment"));
 }
 
+TEST_F(MeshFileTest, AsciiPlyIsOneElementPerLine) {
+  // assimp reads an ASCII PLY line by line: a face short of its items took its last one, a list length, from the next
+  // line here, and assimp read that line as a list of 34294967295 items.
+  const std::string header = ply_header("ascii", "3", "2");
+  EXPECT_THAT(mesh_error(write("short.ply", header + kTriangleVertices + "4 0 1 2\n34294967295 0 1 2\n")),
+              HasSubstr("line 14 ends before its element's properties"));
+  EXPECT_THAT(mesh_error(write("long.ply", header + "0 0 0 7\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n")),
+              HasSubstr("line 11 holds more values than a 'vertex' element has properties"));
+  EXPECT_THAT(mesh_error(write("word.ply", header + "0 0 0\n1 0 0\n0 1*2 0\n3 0 1 2\n3 0 1 2\n")),
+              HasSubstr("line 13: '1*2' is not a number"));
+  EXPECT_THAT(mesh_error(write("blank.ply", header + kTriangleVertices + "\n3 0 1 2\n3 0 1 2\n")),
+              HasSubstr("line 14 is blank"));
+  EXPECT_EQ(load_mesh(write("ok.ply", header + kTriangleVertices + "3 0 1 2\r\n 3  2 1 0 \n").string(), 1.0, "f")
+                ->triangles.size(),
+            2u);
+}
+
+TEST_F(MeshFileTest, ObjGeometryOnlyReachesAssimp) {
+  // Material libraries (one continued with "\" crashed assimp), groups and names are dropped; the faces stay.
+  const std::string quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+  const fs::path named =
+      write("named.obj", "mtllib a\\\nb.mtl\no part\ng left\nusemtl m\ns 1\n" + quad + "f 1 2 3\ng right\nf 1 3 4\n");
+  EXPECT_EQ(load_mesh(named.string(), 1.0, "f")->triangles.size(), 2u);
+  // Each statement holds as many values as it takes: a vertex of one coordinate corrupted assimp's heap.
+  EXPECT_THAT(mesh_error(write("short_v.obj", "v 15\n" + quad + "f 1 2 3\n")),
+              HasSubstr("line 1: 'v' with 1 values (it takes 3 to 7)"));
+  EXPECT_THAT(mesh_error(write("short_f.obj", quad + "f 1 2\n")), HasSubstr("line 5: 'f' with 2 values (it takes 3"));
+}
+
 TEST_F(MeshFileTest, TrianglesAfterTriangulationAreCapped) {
   std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf";
   for (std::uint32_t i = 0; i < kMaxMeshElements + 3; ++i) obj += " 1";
