@@ -211,15 +211,19 @@ StereoRig read_rig_file(const fs::path& file) {
     rig.board.rows = static_cast<int>(board["rows"]);
     rig.board.square_size = static_cast<double>(board["square_size"]);
   }
-  check_measured(rig, name);
+  return complete_rig(std::move(rig), name);
+}
+}  // namespace
+
+StereoRig complete_rig(StereoRig rig, const std::string& where) {
+  check_measured(rig, where);
   try {
     compute_stereo_geometry(rig);
   } catch (const InputError& error) {
-    throw InputError(name + ": " + error.what());
+    throw InputError(where + ": " + error.what());
   }
   return rig;
 }
-}  // namespace
 
 StereoRig read_rig(const fs::path& file) {
   try {

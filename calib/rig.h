@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -56,6 +57,10 @@ inline constexpr int kRigVersion = 2;
 // Fills E, F and the row rectification (R1, R2, P1, P2, Q, rectified sizes) from the intrinsics, R and T.
 // Throws InputError naming the key when the rig is degenerate (calib/rectification.h).
 void compute_stereo_geometry(StereoRig& rig);
+
+// The rig with its measured keys (sizes, intrinsics, distortion, R, T) checked and its derived keys (E, F, the
+// rectification) computed, as read_rig does for a file. Throws InputError starting with `where` and naming the key.
+StereoRig complete_rig(StereoRig rig, const std::string& where);
 
 // Writes the rig atomically. Throws InputError when a matrix has the wrong size.
 void write_rig(const StereoRig& rig, const std::filesystem::path& file);

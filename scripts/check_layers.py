@@ -13,7 +13,9 @@ except ones naming a project directory. tests/ and bench/ are not checked: they 
 On top of the graph, the architecture's rules (the declared policy below): every layer is declared there; no cycles;
 calib is CPU only (its closure is exactly {core}, no layer in it links OpenCL or HDF5, and calib/CMakeLists.txt names
 no OpenCL or HDF5 target); the scheduler depends on no stage layer (its closure stays within {core, cl}); only sim,
-pipeline and cli may use the simulator, and evaluation never does.
+pipeline, cli and api (the front door, over pipeline) may use the simulator, and evaluation never does; the Python
+module (python/src) and the installed-package consumer (tests/install/consumer) include no project header but the
+front door rfrecon/rfrecon.h.
 
 Exit status 0 when everything holds, 1 with one `path:line: message` line per violation, 2 on bad usage.
 
@@ -58,11 +60,16 @@ LAYERS = {
     "cli": "host/cli",
     "calib": "calib",
     "sim": "sim",
+    "api": "rfrecon",
 }
 # CMake targets of the cli directory (it is no rfrecon_add_layer library).
 CLI_TARGETS = ("rfrecon_cli_commands", "rfrecon_cli")
 # Top-level directories whose sources belong to layers; files there outside every layer directory are violations.
-SOURCE_rootS = ("host", "calib", "sim", "kernels")
+SOURCE_rootS = ("host", "calib", "sim", "kernels", "rfrecon")
+# The front door, and the directories whose code may use the library through it alone (the Python module, the
+# installed-package consumer), each also including its own headers.
+FRONT_DOOR = "rfrecon/rfrecon.h"
+FRONT_DOOR_USERS = ("python/src", "tests/install/consumer")
 # Directories production code must never include from.
 NON_PRODUCTION_rootS = ("tests", "bench")
 SOURCE_EXTENSIONS = (".cc", ".cpp", ".cxx", ".h", ".hpp", ".cl")
@@ -74,7 +81,7 @@ CALIB_CLOSURE = {"core"}
 # OpenCL C sources and their parameters header, comes through cl, which embeds them).
 SCHED_ALLOWED = {"core", "cl", "kernels"}
 # The only layers that may depend on (and include) the simulator.
-SIM_USERS = {"sim", "pipeline", "cli"}
+SIM_USERS = {"sim", "pipeline", "cli", "api"}
 # Layers with an explicit "never the simulator" rule of their own (reported with this reason).
 NO_SIM = {"evaluation": "evaluation reads ground truth through host/truth, never the simulator"}
 # Link items that mean OpenCL or HDF5 (matched against the items of target_link_libraries / rfrecon_add_layer).
@@ -566,6 +573,25 @@ def check_includes(root, layers, violations):
     return files, includes_checked
 
 
+def check_front_door_users(root, violations):
+    """Files of FRONT_DOOR_USERS include of the project only the front door and their own directory's headers."""
+    files = 0
+    for directory in FRONT_DOOR_USERS:
+        for dirpath, dirnames, filenames in os.walk(os.path.join(root, directory)):
+            dirnames.sort()
+            for filename in sorted(f for f in filenames if f.endswith(SOURCE_EXTENSIONS)):
+                rel = os.path.relpath(os.path.join(dirpath, filename), root).replace(os.sep, "/")
+                files += 1
+                for line, kind, target in includes(os.path.join(root, rel)):
+                    first = target.split("/", 1)[0]
+                    project = kind == '"' and (first in SOURCE_rootS or first in NON_PRODUCTION_rootS
+                                               or os.path.isdir(os.path.join(root, first)))
+                    if project and target != FRONT_DOOR and not target.startswith(directory + "/"):
+                        violations.add(rel, line, f"{rel} includes {target}: {directory}/ uses the library through "
+                                                  f"its front door only ({FRONT_DOOR})")
+    return files
+
+
 # ---- Output and the doc ---------------------------------------------------------------------------------------------
 DOC_FENCE_RE = re.compile(r"^```\s*text\s+layers\s*$")
 
@@ -673,6 +699,7 @@ def main(argv=None):
 
     check_graph(root, layers, violations)
     files, checked = check_includes(root, layers, violations)
+    files += check_front_door_users(root, violations)
     for doc in args.check_doc:
         doc_path = doc if os.path.isabs(doc) else os.path.join(root, doc)
         check_doc(layers, doc_path, os.path.relpath(doc_path, root).replace(os.sep, "/"), violations)

@@ -27,6 +27,7 @@ GRAPH = {
     "host/pipeline": ("pipeline", ["depth", "evaluation", "sim"]),
     "calib": ("calib", ["core"]),
     "sim": ("sim", ["capture", "calib", "truth"]),
+    "rfrecon": ("api", ["pipeline"]),
 }
 DIRS = {name: d for d, (name, _) in GRAPH.items()}
 DIRS.update(kernels="kernels", cli="host/cli")
@@ -93,7 +94,16 @@ class CheckLayersTest(unittest.TestCase):
     def test_clean_tree_passes(self):
         rc, out = self.tree.run()
         self.assertEqual(rc, 0, out)
-        self.assertIn("15 layers", out)
+        self.assertIn("16 layers", out)
+
+    def test_front_door_users_include_only_the_front_door(self):
+        self.tree.write("python/src/module.cc", '#include "rfrecon/rfrecon.h"\n#include "python/src/arrays.h"\n'
+                                                '#include <pybind11/pybind11.h>\n')
+        rc, out = self.tree.run()
+        self.assertEqual(rc, 0, out)
+        self.tree.write("tests/install/consumer/main.cc", '#include "rfrecon/rfrecon.h"\n#include "calib/calib.h"\n')
+        self.assertFails("tests/install/consumer/main.cc:2: tests/install/consumer/main.cc includes calib/calib.h: "
+                         "tests/install/consumer/ uses the library through its front door only (rfrecon/rfrecon.h)")
 
     def test_wrong_way_include(self):
         self.tree.write("host/core/core.cc", '#include "host/core/core.h"\n\n#include "host/depth/depth.h"\n')
@@ -141,11 +151,11 @@ class CheckLayersTest(unittest.TestCase):
     def test_production_include_of_sim(self):
         self.tree.write("host/outputs/outputs.cc", '#include "sim/sim.h"\n')
         self.assertFails("host/outputs/outputs.cc:1: host/outputs/outputs.cc (layer outputs) includes sim/sim.h "
-                         "(layer sim), not a dependency of outputs: only cli, pipeline, sim may use the simulator")
+                         "(layer sim), not a dependency of outputs: only api, cli, pipeline, sim may use the simulator")
 
     def test_depth_on_sim_in_cmake(self):
         self.tree.set_deps("depth", ["transport", "calib", "outputs", "sim"])
-        self.assertFails("layer depth depends on sim (via depth -> sim): only cli, pipeline, sim may use")
+        self.assertFails("layer depth depends on sim (via depth -> sim): only api, cli, pipeline, sim may use")
 
     def test_unknown_host_folder(self):
         self.tree.write("host/depth/depth.cc", '#include "host/calibration/dual.h"\n')

@@ -17,7 +17,14 @@ FrameSource FrameSource::from_callback(RawFrame raw_frame, std::string name) {
   return source;
 }
 
+FrameSource FrameSource::with_check(std::function<void()> check) const {
+  FrameSource source = *this;
+  source.check_ = std::move(check);
+  return source;
+}
+
 cv::Mat FrameSource::load(const CaptureManifest& manifest, std::size_t index, FrameForm form) const {
+  if (check_) check_();
   if (!raw_frame_) return load_frame(capture_dir_, manifest, index, form);
   const std::string label = describe(manifest, index);
   cv::Mat raw;

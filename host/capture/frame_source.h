@@ -32,6 +32,9 @@ class FrameSource {
   // Frames from `raw_frame`; `name` stands for the source in error messages ("camera SDK", "frames in memory").
   static FrameSource from_callback(RawFrame raw_frame, std::string name);
 
+  // The same source, calling `check` before every frame it loads (from the reading thread): a check that throws ends
+  // the run as a failed read does (a library caller's cancellation).
+  FrameSource with_check(std::function<void()> check) const;
   // Frame `index`, linearised (CV_32F, [0, 1]: capture::linearize_frame) or raw (checked: check_raw_frame). Throws
   // InputError naming the file, or the source and frame, when it is missing, unreadable, mis-sized or of the wrong
   // bit depth. Thread-safe.
@@ -49,6 +52,7 @@ class FrameSource {
   RawFrame raw_frame_;
   std::string name_;
   std::shared_ptr<std::mutex> callback_lock_;
+  std::function<void()> check_;
 };
 
 }  // namespace rfrecon::capture

@@ -4,6 +4,7 @@
 #include "host/cl/device_selection.h"
 #include "host/cli/commands.h"
 #include "host/cli/number_checks.h"
+#include "host/depth/depth_option_table.h"
 #include "host/pipeline/reconstruct_scan.h"
 
 namespace rfrecon::cli {
@@ -48,47 +49,18 @@ void add_reconstruct_command(CLI::App& app) {
   add_devices_option(command, options->devices);
   add_tile_timeout_option(command);
   add_entry_option(command, options->request.depth.entries);
-  auto& depth = options->request.depth;
-  command
-      ->add_option("--epipolar-tolerance", depth.rectification.epipolar_tolerance_px,
-                   "Reject correspondences further than this from their rectified row (px)")
-      ->check(finite_range(0.01, 1000.0))
-      ->capture_default_str();
-  command
-      ->add_option("--saturation", depth.rectification.saturation,
-                   "Drop pixels with a T entry at or above this (linear, 1 = full scale)")
-      ->check(finite_range(0.1, 1000.0))
-      ->capture_default_str();
-  command
-      ->add_option("--edge-relative", depth.rectification.edge_relative,
-                   "Drop pixels whose direct energy differs from a neighbour's by more than this fraction of their "
-                   "own (albedo and shadow edges bias the correspondence)")
-      ->check(finite_range(0.1, 1000.0))
-      ->capture_default_str();
-  command
-      ->add_option("--edge-footprint", depth.rectification.edge_footprint_px2,
-                   "Correct the correspondences on albedo and shadow edges for a camera-pixel footprint of this "
-                   "second moment (px^2: 1/12 for a sharp pixel, plus the blur's variance; 0: off)")
-      ->check(finite_range(0.0, 10.0))
-      ->capture_default_str();
-  command->add_option("--jump", depth.segmentation.jump_relative, "Relative depth step that ends a run")
-      ->check(finite_range(0.001, 1000.0))
-      ->capture_default_str();
-  command->add_option("--crease", depth.segmentation.crease_deg, "Change of in-row slope that ends a run (deg)")
-      ->check(finite_range(1.0, 180.0))
-      ->capture_default_str();
-  command->add_option("--passes", depth.integration.passes, "Shooting passes of the integration")
-      ->check(CLI::Range(1, 20))
-      ->capture_default_str();
-  command->add_option("--iterations", depth.fusion.iterations, "Linearised solves of the fusion")
-      ->check(CLI::Range(1, 20))
-      ->capture_default_str();
-  command->add_option("--sigma-disparity", depth.fusion.sigma_disparity_px, "Disparity noise, px (fusion weight)")
-      ->check(finite_range(1e-4, 100.0))
-      ->capture_default_str();
-  command->add_option("--sigma-step", depth.fusion.sigma_step_mm, "ODE step error, mm (fusion weight)")
-      ->check(finite_range(1e-4, 100.0))
-      ->capture_default_str();
+  for (const auto& spec : depth::depth_option_table()) {
+    const std::string flag = std::string("--") + spec.name;
+    if (spec.real != nullptr) {
+      command->add_option(flag, *spec.real(options->request.depth), spec.help)
+          ->check(finite_range(spec.low, spec.high))
+          ->capture_default_str();
+    } else {
+      command->add_option(flag, *spec.whole(options->request.depth), spec.help)
+          ->check(CLI::Range(static_cast<int>(spec.low), static_cast<int>(spec.high)))
+          ->capture_default_str();
+    }
+  }
   command->callback([options] { run_reconstruct(*options); });
 }
 

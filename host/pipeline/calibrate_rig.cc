@@ -51,23 +51,11 @@ std::string pose_name(const fs::path& pose_dir) {
 }
 }  // namespace
 
-RigCalibrationRun calibrate_rig(const RigCalibrationRequest& request, std::vector<cl::DeviceContext>& devices,
-                                cl::ProgramCache& programs) {
-  std::vector<fs::path> inputs;
-  for (const auto& pose_dir : request.pose_dirs) {
-    const auto manifest = transport::open_capture(pose_dir, request.source.layout, request.source.projector_size,
-                                                  request.source.frame_paths, request.source.bit_depth);
-    const auto files = capture::capture_files(pose_dir, manifest);
-    inputs.insert(inputs.end(), files.begin(), files.end());
-  }
-  const OutputPath output{request.output, "--output", request.force};
-  const OutputPath report_output{request.report_dir, "--report", request.force};
-  check_output_file(output, inputs);
-  check_output_directory(report_output, inputs);
-  check_distinct_outputs({output, report_output});
+RigCalibrationRun calibrate_poses(const std::vector<PoseCapture>& poses, const calib::BoardSpec& board,
+                                  const calib::CalibrationOptions& options, StagingDirectory* report,
+                                  std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
   RigCalibrationRun run;
-  run.poses = request.pose_dirs.size();
-  StagingDirectory report(request.report_dir, true);
+  run.poses = poses.size();
   std::vector<calib::StereoView> views;
   std::vector<calib::ViewOverhang> overhangs;
   std::size_t boards_found = 0;  // poses with the board in the camera image
@@ -76,52 +64,78 @@ RigCalibrationRun calibrate_rig(const RigCalibrationRequest& request, std::vecto
   cv::Size projector_size;
   cv::Mat camera_background;
   cv::Mat projector_background;
-  Progress progress("calibrate", request.pose_dirs.size(), "poses");
-  for (const auto& pose_dir : request.pose_dirs) {
-    const auto captured = transport::view_capture(pose_dir, request.source, devices, programs);
+  Progress progress("calibrate", poses.size(), "poses");
+  for (const auto& capture : poses) {
+    const std::string where = capture.frames.name();
+    const auto captured = transport::view_capture(capture.frames, capture.manifest, devices, programs);
     merge_stages(run.schedule, captured.schedule);
-    for (const auto& finding : captured.checks.findings) spdlog::warn("{}: {}", pose_dir.string(), finding.message);
-    const auto pose = calib::observe_board(pose_name(pose_dir), captured.camera_image, captured.dual_image,
-                                           captured.dual_reached, captured.correspondence, request.board);
+    for (const auto& finding : captured.checks.findings) spdlog::warn("{}: {}", where, finding.message);
+    const auto pose = calib::observe_board(capture.name, captured.camera_image, captured.dual_image,
+                                           captured.dual_reached, captured.correspondence, board);
     if (camera_size.empty()) {
       camera_size = pose.camera_image.size();
       projector_size = pose.dual_image.size();
     }
     if (pose.camera_image.size() != camera_size || pose.dual_image.size() != projector_size) {
-      throw InputError(pose_dir.string() + ": camera or projector size differs from the first pose's (mixed captures)");
+      throw InputError(where + ": camera or projector size differs from the first pose's (mixed captures)");
     }
-    write_image(report.path() / ("camera_" + pose.name + ".png"),
-                calib::draw_corners(pose.camera_image, request.board, pose.camera_corners));
-    write_image(report.path() / ("dual_" + pose.name + ".png"),
-                calib::draw_corners(pose.dual_image, request.board, pose.projector_corners));
+    if (report != nullptr) {
+      write_image(report->path() / ("camera_" + pose.name + ".png"),
+                  calib::draw_corners(pose.camera_image, board, pose.camera_corners));
+      write_image(report->path() / ("dual_" + pose.name + ".png"),
+                  calib::draw_corners(pose.dual_image, board, pose.projector_corners));
+    }
     if (!pose.camera_corners.empty()) ++boards_found;
-    if (pose.camera_overhang.any()) overhangs.push_back({pose_dir.string(), pose.camera_overhang});
+    if (pose.camera_overhang.any()) overhangs.push_back({where, pose.camera_overhang});
     if (pose.usable()) {
       add_to_background(camera_background, pose.camera_image);
       add_to_background(projector_background, pose.dual_image);
       views.push_back({pose.name, pose.camera_corners, pose.projector_corners,
                        calib::sample_dense_correspondences(pose.camera_image, captured.correspondence,
-                                                           pose.camera_corners, request.options.dense_points)});
+                                                           pose.camera_corners, options.dense_points)});
       run.view_names.push_back(pose.name);
     } else {
-      spdlog::warn("{}: {}; pose skipped", pose_dir.string(), pose.problem);
-      if (first_problem.empty()) first_problem = pose_dir.string() + ": " + pose.problem;
+      spdlog::warn("{}: {}; pose skipped", where, pose.problem);
+      if (first_problem.empty()) first_problem = where + ": " + pose.problem;
     }
     progress.advance();
   }
-  run.calibration = calib::keeping_report(report, [&] {
-    calib::check_board_fits(overhangs, request.board, boards_found);
+  const auto calibrate = [&] {
+    calib::check_board_fits(overhangs, board, boards_found);
     if (views.empty()) {
-      throw ProcessingError("none of the " + std::to_string(request.pose_dirs.size()) + " poses is usable with " +
-                            calib::board_options_text(request.board) + " (" + first_problem +
-                            "): " + calib::kBoardAdvice);
+      throw ProcessingError("none of the " + std::to_string(poses.size()) + " poses is usable with " +
+                            calib::board_options_text(board) + " (" + first_problem + "): " + calib::kBoardAdvice);
     }
-    return calib::calibrate_stereo(views, request.board, camera_size, projector_size, request.options);
-  });
+    return calib::calibrate_stereo(views, board, camera_size, projector_size, options);
+  };
+  run.calibration = report != nullptr ? calib::keeping_report(*report, calibrate) : calibrate();
   for (const auto& warning : run.calibration.warnings) spdlog::warn("calibrate: {}", warning);
   for (const auto& decision : run.calibration.gating) spdlog::warn("calibrate: gating: {}", decision.describe());
-  calib::write_stereo_report(report.path(), run.calibration, views, camera_background, projector_background);
-  write_file_atomically(report.path() / "schedule.json", nlohmann::json(run.schedule).dump(2) + "\n");
+  if (report != nullptr) {
+    calib::write_stereo_report(report->path(), run.calibration, views, camera_background, projector_background);
+    write_file_atomically(report->path() / "schedule.json", nlohmann::json(run.schedule).dump(2) + "\n");
+  }
+  return run;
+}
+
+RigCalibrationRun calibrate_rig(const RigCalibrationRequest& request, std::vector<cl::DeviceContext>& devices,
+                                cl::ProgramCache& programs) {
+  std::vector<fs::path> inputs;
+  std::vector<PoseCapture> poses;
+  for (const auto& pose_dir : request.pose_dirs) {
+    auto manifest = transport::open_capture(pose_dir, request.source.layout, request.source.projector_size,
+                                            request.source.frame_paths, request.source.bit_depth);
+    const auto files = capture::capture_files(pose_dir, manifest);
+    inputs.insert(inputs.end(), files.begin(), files.end());
+    poses.push_back({pose_name(pose_dir), pose_dir, std::move(manifest)});
+  }
+  const OutputPath output{request.output, "--output", request.force};
+  const OutputPath report_output{request.report_dir, "--report", request.force};
+  check_output_file(output, inputs);
+  check_output_directory(report_output, inputs);
+  check_distinct_outputs({output, report_output});
+  StagingDirectory report(request.report_dir, true);
+  auto run = calibrate_poses(poses, request.board, request.options, &report, devices, programs);
   report.commit();  // the secondary output first: a report that cannot be moved into place fails before rig.yaml
   calib::write_rig(run.calibration.rig, request.output);
   return run;

@@ -7,6 +7,9 @@
 #include <vector>
 
 #include "calib/stereo_calibration.h"
+#include "host/capture/frame_source.h"
+#include "host/capture/manifest.h"
+#include "host/core/atomic_file.h"
 #include "host/sched/report.h"
 #include "host/transport/capture_views.h"
 
@@ -28,6 +31,20 @@ struct RigCalibrationRun {
   std::size_t poses = 0;                   // given
   std::vector<sched::RunReport> schedule;  // per stage, summed over the poses
 };
+
+// One board pose's capture from any source: its name in the report and the per-view errors, its frames (a capture
+// directory, a camera, memory; the source's name stands for the pose in messages) and their manifest.
+struct PoseCapture {
+  std::string name;
+  capture::FrameSource frames;
+  capture::CaptureManifest manifest;
+};
+
+// The calibration of calibrate_rig from captures of any source, with the same checks and errors; the report's files
+// go into `report` when it is given (the caller commits it), and no rig file is written.
+RigCalibrationRun calibrate_poses(const std::vector<PoseCapture>& poses, const calib::BoardSpec& board,
+                                  const calib::CalibrationOptions& options, StagingDirectory* report,
+                                  std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs);
 
 // For each pose: T and T^T 1 on `devices`, corners in both images (a pose without the board is skipped with a
 // warning); then calibrates, writes the report and then rig.yaml. Throws UsageError before any work for outputs that

@@ -11,20 +11,16 @@
 
 namespace rfrecon::pipeline {
 
-ReconstructRun reconstruct_scan(const ReconstructRequest& request, std::vector<cl::DeviceContext>& devices,
-                                cl::ProgramCache& programs) {
+ReconstructRun reconstruct_transport(const transport::CompressedTransport& transport, const calib::StereoRig& rig,
+                                     const std::string& rig_name, const ReconstructRequest& request,
+                                     std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
   const auto entries = request.depth.entries.resolve(devices);  // a list of the wrong length: UsageError
-  check_output_directory({request.out_dir, "--output", request.force}, {request.transport, request.rig});
-  const auto transport = transport::read_transport(request.transport);
-  const auto rig = calib::read_rig(request.rig);
-  spdlog::info("reconstruct: {} from {} with {}", depth::method_name(request.depth.method), request.transport.string(),
-               request.rig.string());
   for (std::size_t i = 0; i < devices.size(); ++i) {
     spdlog::info("reconstruct: on {} (entry {})", cl::describe(devices[i].info()), cl::entry_name(entries[i]));
   }
   ReconstructRun run;
   run.camera_pixels = transport.setup.camera_size.area();
-  run.depth = depth::reconstruct_depth(transport, rig, request.rig.string(), request.depth, devices, programs);
+  run.depth = depth::reconstruct_depth(transport, rig, rig_name, request.depth, devices, programs);
   run.depth.summary["transport_file"] = request.transport.string();
   run.depth.summary["calibration_file"] = request.rig.string();
   run.depth.summary["camera"] = camera_intrinsics_json(rig);
@@ -32,6 +28,18 @@ ReconstructRun reconstruct_scan(const ReconstructRequest& request, std::vector<c
   if (!transport.white.empty()) {
     run.depth.maps.white = cv::Mat(transport.white, true).reshape(1, transport.setup.camera_size.height);
   }
+  return run;
+}
+
+ReconstructRun reconstruct_scan(const ReconstructRequest& request, std::vector<cl::DeviceContext>& devices,
+                                cl::ProgramCache& programs) {
+  (void)request.depth.entries.resolve(devices);  // a list of the wrong length: UsageError before any work
+  check_output_directory({request.out_dir, "--output", request.force}, {request.transport, request.rig});
+  const auto transport = transport::read_transport(request.transport);
+  const auto rig = calib::read_rig(request.rig);
+  spdlog::info("reconstruct: {} from {} with {}", depth::method_name(request.depth.method), request.transport.string(),
+               request.rig.string());
+  auto run = reconstruct_transport(transport, rig, request.rig.string(), request, devices, programs);
   outputs::write_reconstruction(run.depth.maps, run.depth.summary, request.out_dir, request.force);
   return run;
 }

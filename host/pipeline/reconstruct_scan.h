@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "host/depth/reconstruct_depth.h"
@@ -20,6 +21,12 @@ struct ReconstructRun {
   depth::DepthRun depth;  // summary with transport_file, calibration_file, camera (intrinsics) and options added
   int camera_pixels = 0;
 };
+
+// The depth stage of reconstruct_scan on a transport and rig in memory (`rig_name` names the rig in messages), with
+// the summary's additions (request's files, camera, options) and T's white frame; writes nothing.
+ReconstructRun reconstruct_transport(const transport::CompressedTransport& transport, const calib::StereoRig& rig,
+                                     const std::string& rig_name, const ReconstructRequest& request,
+                                     std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs);
 
 // Throws UsageError before any work when out_dir is not a directory, holds an input, or is not empty without
 // force, or when a per-device depth.entries list does not have one entry per device; InputError naming the file (bad

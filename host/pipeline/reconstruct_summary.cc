@@ -7,6 +7,7 @@
 #include <string>
 
 #include "host/cl/entry_choice.h"
+#include "host/depth/depth_option_table.h"
 #include "host/sched/watchdog.h"
 
 namespace rfrecon::pipeline {
@@ -57,16 +58,11 @@ nlohmann::json reconstruct_options_json(const ReconstructRequest& request,
   json["entries"] = nlohmann::json::array();
   for (const cl::KernelEntry entry : entries) json["entries"].push_back(cl::entry_name(entry));
   json["tile-timeout"] = sched::tile_timeout_from_environment();
-  json["epipolar-tolerance"] = shortest(depth.rectification.epipolar_tolerance_px);
-  json["saturation"] = shortest(depth.rectification.saturation);
-  json["edge-relative"] = shortest(depth.rectification.edge_relative);
-  json["edge-footprint"] = shortest(depth.rectification.edge_footprint_px2);
-  json["jump"] = shortest(depth.segmentation.jump_relative);
-  json["crease"] = shortest(depth.segmentation.crease_deg);
-  json["passes"] = depth.integration.passes;
-  json["iterations"] = depth.fusion.iterations;
-  json["sigma-disparity"] = shortest(depth.fusion.sigma_disparity_px);
-  json["sigma-step"] = shortest(depth.fusion.sigma_step_mm);
+  depth::DepthOptions values = depth;  // the table's accessors hand out pointers into a mutable struct
+  for (const auto& spec : depth::depth_option_table()) {
+    json[spec.name] =
+        spec.real != nullptr ? nlohmann::json(shortest(*spec.real(values))) : nlohmann::json(*spec.whole(values));
+  }
   json["force"] = request.force;
   return json;
 }

@@ -35,6 +35,34 @@ std::string outcome_text(const transport::PixelOutcomeCounts& counts, const tran
 }
 }  // namespace
 
+TransportFileRun transport_frames(const capture::FrameSource& frames, const capture::CaptureManifest& manifest,
+                                  const transport::TransportSetup& setup, const cl::EntryChoice& entries, int readers,
+                                  std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
+  const double camera_pixels = static_cast<double>(manifest.camera_size.area());
+  check_memory(camera_pixels * (2.0 * 8.0 * setup.entries_per_pixel + 64.0),
+               "the light transport of a " + size_text(manifest.camera_size) +
+                   " camera with K = " + std::to_string(setup.entries_per_pixel));
+  TransportFileRun file_run;
+  file_run.run = transport::compute_transport_on_devices(frames, manifest, setup, devices, programs, entries, readers);
+  file_run.outcomes = transport::count_outcomes(file_run.run.transport);
+  const auto& flags = file_run.run.transport.flags;
+  // Dot frames give correspondences around whatever code a pixel has, so a Gray code that no pixel decodes leaves
+  // nothing to trust either.
+  const bool gray_decoded =
+      std::any_of(flags.begin(), flags.end(), [](std::uint8_t f) { return (f & transport::kFlagValid) != 0; });
+  if (file_run.decoded_pixels() == 0 || !gray_decoded) {
+    // The capture checks often know why (too dark, saturated, a gamma left on): they go into the message.
+    std::string findings;
+    for (const auto& finding : file_run.run.checks.findings) findings += " Capture check: " + finding.message + ".";
+    throw ProcessingError(frames.name() + ": no camera pixel decoded (" +
+                          outcome_text(file_run.outcomes, setup.thresholds) +
+                          "); check that each pattern and its inverse are different captures of a lit scene, and "
+                          "lower the threshold of the outcome that dominates." +
+                          findings + " Nothing was written.");
+  }
+  return file_run;
+}
+
 TransportFileRun transport_capture(const TransportRequest& request, std::vector<cl::DeviceContext>& devices,
                                    cl::ProgramCache& programs) {
   request.entries.check_device_count(devices.size());
@@ -50,29 +78,8 @@ TransportFileRun transport_capture(const TransportRequest& request, std::vector<
   if (!request.maps.empty()) check_output_directory(maps_output, inputs);
   check_distinct_outputs({output, summary_output, maps_output});
 
-  const double camera_pixels = static_cast<double>(manifest.camera_size.area());
-  check_memory(camera_pixels * (2.0 * 8.0 * request.setup.entries_per_pixel + 64.0),
-               "the light transport of a " + size_text(manifest.camera_size) +
-                   " camera with K = " + std::to_string(request.setup.entries_per_pixel));
-  TransportFileRun file_run;
-  file_run.run = transport::compute_transport_on_devices(request.capture_dir, manifest, request.setup, devices,
-                                                         programs, request.entries, request.readers);
-  file_run.outcomes = transport::count_outcomes(file_run.run.transport);
-  const auto& flags = file_run.run.transport.flags;
-  // Dot frames give correspondences around whatever code a pixel has, so a Gray code that no pixel decodes leaves
-  // nothing to trust either.
-  const bool gray_decoded =
-      std::any_of(flags.begin(), flags.end(), [](std::uint8_t f) { return (f & transport::kFlagValid) != 0; });
-  if (file_run.decoded_pixels() == 0 || !gray_decoded) {
-    // The capture checks often know why (too dark, saturated, a gamma left on): they go into the message.
-    std::string findings;
-    for (const auto& finding : file_run.run.checks.findings) findings += " Capture check: " + finding.message + ".";
-    throw ProcessingError(request.capture_dir.string() + ": no camera pixel decoded (" +
-                          outcome_text(file_run.outcomes, request.setup.thresholds) +
-                          "); check that each pattern and its inverse are different captures of a lit scene, and "
-                          "lower the threshold of the outcome that dominates." +
-                          findings + " Nothing was written.");
-  }
+  TransportFileRun file_run = transport_frames(request.capture_dir, manifest, request.setup, request.entries,
+                                               request.readers, devices, programs);
   AtomicFile t_file(request.output);
   StageClock clock;
   clock.time("write T.h5",

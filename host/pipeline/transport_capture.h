@@ -32,6 +32,12 @@ struct TransportFileRun {
   double total_seconds = 0.0;
 };
 
+// The transport stage of transport_capture on frames from any source, without its files: checks the memory T needs
+// first, and throws ProcessingError (naming frames.name()) when no pixel decodes.
+TransportFileRun transport_frames(const capture::FrameSource& frames, const capture::CaptureManifest& manifest,
+                                  const transport::TransportSetup& setup, const cl::EntryChoice& entries, int readers,
+                                  std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs);
+
 // Decodes and compresses the capture on `devices` and writes T.h5 (and the summary and maps), all renamed into
 // place only once all are written. Throws UsageError (before any work) for an output that check_output_file refuses (an
 // input of the capture, a device, an existing file without force) and for a per-device entry list whose length is not

@@ -10,16 +10,22 @@ namespace rfrecon::transport {
 
 CaptureViews view_capture(const std::filesystem::path& capture_dir, const CaptureSource& source,
                           std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
+  return view_capture(
+      capture_dir,
+      open_capture(capture_dir, source.layout, source.projector_size, source.frame_paths, source.bit_depth), devices,
+      programs);
+}
+
+CaptureViews view_capture(const capture::FrameSource& frames, const capture::CaptureManifest& manifest,
+                          std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
   CaptureViews views;
-  const auto manifest =
-      open_capture(capture_dir, source.layout, source.projector_size, source.frame_paths, source.bit_depth);
   TransportSetup setup;
   // The board's dark squares (albedo about 0.05) read below the default black threshold and would count as shadow:
   // without T entries, T^T 1 would have them speckled and partly unreached, and filling those gaps pulls bright
   // values into the dark tips at every corner (0.095 px RMS projector corner error on checkerboard-poses, against
   // 0.029 px with every board pixel lit). A board pose has no shadow to reject: lit means above the noise.
   setup.thresholds.black = default_noise_threshold(manifest.bit_depth);
-  const auto run = compute_transport_on_devices(capture_dir, manifest, setup, devices, programs, cl::EntryChoice());
+  const auto run = compute_transport_on_devices(frames, manifest, setup, devices, programs, cl::EntryChoice());
   views.schedule = run.schedule;
   views.checks = run.checks;
   const auto& transport = run.transport;
@@ -28,7 +34,7 @@ CaptureViews view_capture(const std::filesystem::path& capture_dir, const Captur
     if (manifest.frames[i].pattern.kind == capture::PatternKind::kWhite) {
       auto with_size = manifest;
       with_size.camera_size = transport.setup.camera_size;
-      views.camera_image = capture::load_frame(capture_dir, with_size, i);
+      views.camera_image = frames.load(with_size, i);
     }
   }
   const std::vector<float> ones(transport.camera_pixels(), 1.0f);

@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "host/capture/capture_checks.h"
+#include "host/capture/frame_source.h"
 #include "host/capture/manifest.h"
 #include "host/cl/device_context.h"
 #include "host/cl/program_cache.h"
@@ -38,6 +39,9 @@ struct CaptureViews {
 // level, so the board's dark squares are lit), forms T^T 1 and reads the white frame; each device runs the kernel
 // entry that suits it (cl::preferred_entry). Input errors (missing frames, bad manifest) throw InputError.
 CaptureViews view_capture(const std::filesystem::path& capture_dir, const CaptureSource& source,
+                          std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs);
+// The same for frames from any source (a capture directory, a camera, memory) described by `manifest`.
+CaptureViews view_capture(const capture::FrameSource& frames, const capture::CaptureManifest& manifest,
                           std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs);
 
 }  // namespace rfrecon::transport

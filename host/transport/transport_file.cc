@@ -152,6 +152,10 @@ void write_dataset(H5::H5File& file, const char* name, const std::vector<hsize_t
   properties.setChunk(static_cast<int>(chunk.size()), chunk.data());
   if (deflate_level > 0) properties.setDeflate(deflate_level);
   properties.setFletcher32();  // after deflate: checks the stored bytes before they are inflated
+  // No times in the dataset's object header (MemoryFile::create).
+  if (H5Pset_obj_track_times(properties.getId(), 0) < 0) {
+    throw H5::PropListIException("H5Pset_obj_track_times", "cannot leave the times out of T.h5");
+  }
   H5::DataSet dataset = file.createDataSet(name, h5_type<T>(), space, properties);
   dataset.write(data.data(), h5_type<T>());
 }
@@ -183,9 +187,14 @@ class MemoryFile {
     }
   }
 
-  // Creates the file; `name` (a path that does not exist) only names it: nothing is written there.
+  // Creates the file; `name` (a path that does not exist) only names it: nothing is written there. Its root group
+  // holds no times (nor do the datasets, write_dataset): the same T gives the same file, byte for byte.
   H5::H5File create(const fs::path& name) const {
-    return H5::H5File(name.string(), H5F_ACC_TRUNC, H5::FileCreatPropList::DEFAULT, access_);
+    const H5::FileCreatPropList creation;
+    if (H5Pset_obj_track_times(creation.getId(), 0) < 0) {
+      throw H5::PropListIException("H5Pset_obj_track_times", "cannot leave the times out of T.h5");
+    }
+    return H5::H5File(name.string(), H5F_ACC_TRUNC, creation, access_);
   }
 
   // The closed file's bytes, up to the end-of-file address of its superblock (version 2, 8-byte addresses: at byte

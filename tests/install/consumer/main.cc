@@ -1,26 +1,19 @@
-// A program built against the installed rfrecon package alone: renders a small tilted plane with the synthetic rig,
-// turns the capture into T.h5 on the OpenCL devices, reconstructs it with the true rig and checks depth against truth.
+// A program built against the installed rfrecon package through its front door alone (rfrecon/rfrecon.h): renders a
+// small tilted plane with the synthetic rig, loads its frames into memory as a camera would hand them over, makes T
+// and reconstructs it with the true rig on the OpenCL devices, and checks depth against the truth.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <vector>
 
-#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
-#include "calib/rig.h"
-#include "host/cl/device_selection.h"
-#include "host/cl/program_cache.h"
-#include "host/pipeline/reconstruct_scan.h"
-#include "host/pipeline/transport_capture.h"
-#include "host/truth/ground_truth.h"
-#include "sim/scene.h"
-#include "sim/simulate.h"
-#include "sim/truth_io.h"
+#include "rfrecon/rfrecon.h"
 
-namespace rfrecon {
 namespace {
 
 namespace fs = std::filesystem;
@@ -54,31 +47,36 @@ int run(const fs::path& work) {
   const auto start = std::chrono::steady_clock::now();
   fs::remove_all(work);
   fs::create_directories(work);
+  std::ofstream(work / "scene.json") << scene_json().dump();
 
-  const sim::Scene scene = sim::scene_from_json(scene_json(), "install consumer scene", {});
+  rfrecon::Session session;  // every OpenCL device ($RFRECON_DEVICES chooses)
   const fs::path rendering = work / "rendering";
-  sim::simulate(scene, rendering, {});
-  calib::write_rig(sim::true_rig(scene), work / "rig.yaml");
+  const fs::path capture_dir = session.simulate((work / "scene.json").string(), rendering).at(0);
 
-  auto devices = cl::open_devices("");
-  cl::ProgramCache programs;
-  pipeline::TransportRequest transport;
-  transport.capture_dir = rendering / "capture";
-  transport.output = work / "T.h5";
-  pipeline::transport_capture(transport, devices, programs);
+  // The frames in memory, as a camera SDK would hand them over, and their manifest.
+  const auto files = rfrecon::Capture::from_directory(capture_dir);
+  std::vector<cv::Mat> frames;
+  for (std::size_t i = 0; i < files.manifest().frames.size(); ++i) frames.push_back(files.frame(i));
+  const auto camera = rfrecon::Capture::from_frames(files.manifest(), std::move(frames), "frames in memory");
 
-  pipeline::ReconstructRequest reconstruct;
-  reconstruct.transport = transport.output;
-  reconstruct.rig = work / "rig.yaml";
-  reconstruct.out_dir = work / "reconstruction";
-  const auto result = pipeline::reconstruct_scan(reconstruct, devices, programs);
+  const rfrecon::TransportResult transport = session.transport(camera);
+  const rfrecon::Rig rig = rfrecon::read_rig(rendering / "truth" / "rig.yaml");
+  rfrecon::ReconstructOptions options;
+  options.method = rfrecon::Method::kFused;
+  const rfrecon::ReconstructResult result = session.reconstruct(transport.transport, rig, options);
+  rfrecon::write_reconstruction(result, work / "reconstruction");
 
   // The plane's pixels: depth errors over those reconstructed; coverage over its interior (pixels whose 3x3
   // neighbourhood is all plane), as the fused method leaves out pixels that straddle the plane's edge.
-  const truth::TruthView truth = truth::read_truth(rendering);
-  const cv::Mat& depth = result.depth.maps.depth_mm;
+  const cv::Mat true_depth = cv::imread((rendering / "truth" / "depth.tiff").string(), cv::IMREAD_UNCHANGED);
+  const cv::Mat object_id = cv::imread((rendering / "truth" / "object_id.png").string(), cv::IMREAD_UNCHANGED);
+  const cv::Mat& depth = result.maps.depth_mm;
+  if (true_depth.type() != CV_32F || object_id.type() != CV_16U || true_depth.size() != depth.size()) {
+    std::fprintf(stderr, "rfrecon_consumer: unexpected truth maps under %s\n", (rendering / "truth").c_str());
+    return 1;
+  }
   const auto on_plane = [&](int x, int y) {
-    return x >= 0 && y >= 0 && x < depth.cols && y < depth.rows && truth.maps.object_id.at<unsigned short>(y, x) == 1;
+    return x >= 0 && y >= 0 && x < depth.cols && y < depth.rows && object_id.at<unsigned short>(y, x) == 1;
   };
   std::vector<double> errors;
   int interior = 0, interior_reconstructed = 0;
@@ -86,7 +84,7 @@ int run(const fs::path& work) {
     for (int x = 0; x < depth.cols; ++x) {
       if (!on_plane(x, y)) continue;
       const float z = depth.at<float>(y, x);
-      if (std::isfinite(z)) errors.push_back(std::abs(z - truth.maps.depth_mm.at<float>(y, x)));
+      if (std::isfinite(z)) errors.push_back(std::abs(z - true_depth.at<float>(y, x)));
       bool inside = true;
       for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) inside = inside && on_plane(x + dx, y + dy);
@@ -104,24 +102,23 @@ int run(const fs::path& work) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf(
-      "rfrecon %s on %zu device(s): %s, median |depth error| %.4f mm (limit %.1f), coverage %.1f %% "
-      "(limit %.0f) of the %d interior plane pixels, %zu pixels reconstructed, %.1f s\n",
-      RFRECON_VERSION, devices.size(), depth::method_name(reconstruct.depth.method).c_str(), median, kMaxMedianErrorMm,
-      coverage, kMinCoveragePercent, interior, errors.size(), seconds);
+      "rfrecon %s on %zu device(s): fused from %zu frames in memory, median |depth error| %.4f mm (limit %.1f), "
+      "coverage %.1f %% (limit %.0f) of the %d interior plane pixels, %zu pixels reconstructed, %.1f s\n",
+      RFRECON_VERSION, session.devices().size(), camera.manifest().frames.size(), median, kMaxMedianErrorMm, coverage,
+      kMinCoveragePercent, interior, errors.size(), seconds);
   const bool pass = median < kMaxMedianErrorMm && coverage > kMinCoveragePercent;
   if (pass) fs::remove_all(work);
   return pass ? 0 : 1;
 }
 
 }  // namespace
-}  // namespace rfrecon
 
 // Usage: rfrecon_consumer [WORK_DIR]; WORK_DIR (default: under the system temporary directory) is replaced.
 int main(int argc, char** argv) {
   namespace fs = std::filesystem;
   const fs::path work = argc > 1 ? fs::path(argv[1]) : fs::temp_directory_path() / "rfrecon_install_consumer";
   try {
-    return rfrecon::run(work);
+    return run(work);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rfrecon_consumer: %s\n", e.what());
     return 2;
