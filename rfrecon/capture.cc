@@ -1,8 +1,8 @@
 // Captures from a directory, from frames in memory or from a callback, and the protocol's manifest and patterns.
-#include <cstdio>
 #include <utility>
 
 #include "host/capture/frame_source.h"
+#include "host/capture/pattern_files.h"
 #include "host/capture/protocol.h"
 #include "host/core/errors.h"
 #include "host/core/limits.h"
@@ -64,9 +64,7 @@ Manifest make_manifest(cv::Size projector_size, cv::Size camera_size, int bit_de
   manifest.dot_spacing = dot_spacing;
   const auto patterns = capture::make_protocol({projector_size, dot_spacing});
   for (std::size_t i = 0; i < patterns.size(); ++i) {
-    char file[32];
-    std::snprintf(file, sizeof file, "frame_%04zu.png", i);
-    manifest.frames.push_back({patterns[i], file});
+    manifest.frames.push_back({patterns[i], capture::pattern_file_name(i, patterns[i])});
   }
   capture::validate_manifest(manifest, "make_manifest");
   return manifest;

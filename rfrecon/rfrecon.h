@@ -96,7 +96,8 @@ class Capture {
 };
 
 // The protocol's manifest for a rig (white, black, Gray code of both axes with inverses, then the dot grid of
-// `dot_spacing`, 0 for none), frames named frame_0000.png on: what `rfrecon patterns` writes with camera fields.
+// `dot_spacing`, 0 for none), frames named as `rfrecon patterns` names them (000_white.png, ...), with the camera's
+// fields.
 Manifest make_manifest(cv::Size projector_size, cv::Size camera_size, int bit_depth = 8, int dot_spacing = 8);
 // The image to show on the projector for frame `index` of `manifest` (CV_8U, projector size).
 cv::Mat pattern_image(const Manifest& manifest, std::size_t index);
@@ -145,8 +146,8 @@ class Session {
   // The devices' descriptions ("pocl: cpu-... (CPU, 2 compute units)"), in the order they share work.
   std::vector<std::string> devices() const;
 
-  // T of a capture: decoded and compressed on the devices. Errors as `rfrecon transport`: InputError naming the file
-  // or frame, ProcessingError when no pixel decodes.
+  // T of a capture: decoded and compressed on the devices. Errors as `rfrecon transport`: UsageError for K or a
+  // threshold outside its range, InputError naming the file or frame, ProcessingError when no pixel decodes.
   TransportResult transport(const Capture& capture, const TransportOptions& options = {});
   // T^T 1, the scene seen from the projector (CV_32F, projector size), and T 1 (CV_32F, camera size).
   cv::Mat dual_image(const Transport& transport);
@@ -179,12 +180,15 @@ class Session {
 // computed, as read_rig does. Throws InputError starting with `where` and naming the key.
 using calib::complete_rig;
 
-// Files, as the command-line tool reads and writes them (docs/formats.md); writes are atomic.
+// Files, as the command-line tool reads and writes them (docs/formats.md). Writes are atomic and, as the tool's, refuse
+// an existing output (UsageError naming it) unless `force`. Call them qualified (rfrecon::write_rig): the layers'
+// functions of the same names are found by argument-dependent lookup too.
 Transport read_transport(const std::filesystem::path& file);
-void write_transport(const Transport& transport, const std::filesystem::path& file);
-using calib::read_rig;   // rig.yaml, OpenCV's FileStorage names; InputError naming the file and key
-using calib::write_rig;  // rig.yaml
-// The reconstruction directory of `rfrecon reconstruct` (depth.tiff, points.ply, ...); `force` replaces one.
+void write_transport(const Transport& transport, const std::filesystem::path& file, bool force = false);
+using calib::read_rig;  // rig.yaml, OpenCV's FileStorage names; InputError naming the file and key
+void write_rig(const Rig& rig, const std::filesystem::path& file, bool force = false);
+// The reconstruction directory of `rfrecon reconstruct` (depth.tiff, points.ply, ...): a new or empty directory, or
+// with `force` any.
 void write_reconstruction(const ReconstructResult& result, const std::filesystem::path& dir, bool force = false);
 
 }  // namespace rfrecon

@@ -9,10 +9,9 @@
 #include "host/cl/program_cache.h"
 #include "host/core/log_forwarding.h"
 #include "host/pipeline/calibrate_rig.h"
+#include "host/pipeline/dual_image.h"
 #include "host/pipeline/reconstruct_scan.h"
 #include "host/pipeline/transport_capture.h"
-#include "host/transport/spmv.h"
-#include "host/transport/spmv_on_devices.h"
 #include "rfrecon/rfrecon.h"
 #include "sim/builtin_scenes.h"
 #include "sim/simulate.h"
@@ -50,6 +49,12 @@ struct Session::State {
     ScopedProgressObserver progress_;
   };
 
+  // T^T 1 or, with `primal`, T 1 as an image that owns its memory.
+  cv::Mat view(const Transport& transport, bool primal) {
+    auto run = pipeline::view_product(transport, primal, devices, programs);
+    return cv::Mat(run.size, CV_32F, run.product.image.data()).clone();
+  }
+
   // The capture's frames, each read checking for cancellation first.
   capture::FrameSource frames_of(const Capture& capture) {
     const capture::FrameSource source =
@@ -81,6 +86,7 @@ TransportResult Session::transport(const Capture& capture, const TransportOption
   transport::TransportSetup setup;
   setup.entries_per_pixel = options.entries_per_pixel;
   setup.thresholds = options.thresholds;
+  transport::check_setup_ranges(setup);
   auto run = pipeline::transport_frames(state_->frames_of(capture), capture.manifest(), setup, {},
                                         transport::kDefaultReaders, state_->devices, state_->programs);
   TransportResult result;
@@ -92,30 +98,28 @@ TransportResult Session::transport(const Capture& capture, const TransportOption
 
 cv::Mat Session::dual_image(const Transport& transport) {
   const State::Call call(*state_);
-  const std::vector<float> ones(transport.camera_pixels(), 1.0f);
-  const auto product =
-      transport::dual_on_devices(state_->devices, state_->programs, {}, transport::transpose(transport), ones);
-  return cv::Mat(transport.setup.projector_size, CV_32F, const_cast<float*>(product.image.data())).clone();
+  return state_->view(transport, false);
 }
 
 cv::Mat Session::primal_image(const Transport& transport) {
   const State::Call call(*state_);
-  const std::vector<float> ones(static_cast<std::size_t>(transport.setup.projector_size.area()), 1.0f);
-  const auto product = transport::primal_on_devices(state_->devices, state_->programs, {}, transport, ones);
-  return cv::Mat(transport.setup.camera_size, CV_32F, const_cast<float*>(product.image.data())).clone();
+  return state_->view(transport, true);
 }
 
 CalibrationResult Session::calibrate(const std::vector<Capture>& poses, const Board& board,
                                      const CalibrationOptions& options) {
   const State::Call call(*state_);
+  std::vector<std::string> names;
   std::map<std::string, int> uses;
-  for (const auto& pose : poses) ++uses[pose.name()];
+  for (const auto& pose : poses) {
+    names.push_back(pose.dir_.empty() ? pose.name() : pipeline::pose_name(pose.dir_));
+    ++uses[names.back()];
+  }
   std::vector<pipeline::PoseCapture> captures;
   for (std::size_t i = 0; i < poses.size(); ++i) {
     // Names that several poses share (frames in memory all default to one) become "NAME 3" by position.
-    const std::string name = poses[i].dir_.empty() ? poses[i].name() : poses[i].dir_.filename().string();
-    captures.push_back({uses[poses[i].name()] > 1 ? name + " " + std::to_string(i) : name, state_->frames_of(poses[i]),
-                        poses[i].manifest()});
+    const std::string name = uses[names[i]] > 1 ? names[i] + " " + std::to_string(i) : names[i];
+    captures.push_back({name, state_->frames_of(poses[i]), poses[i].manifest()});
   }
   auto run = pipeline::calibrate_poses(captures, board, options, nullptr, state_->devices, state_->programs);
   CalibrationResult result;
@@ -139,14 +143,12 @@ ReconstructResult Session::reconstruct(const Transport& transport, const Rig& ri
 std::vector<std::filesystem::path> Session::simulate(const std::string& scene, const std::filesystem::path& out_dir,
                                                      const SimulateRequest& request) {
   const State::Call call(*state_);
-  sim::Scene resolved = sim::resolve_scene(scene, request.rig);
-  if (!request.camera_size.empty()) sim::resize_device(resolved.camera, request.camera_size);
-  if (!request.projector_size.empty()) sim::resize_device(resolved.projector, request.projector_size);
-  if (request.seed) resolved.render.seed = *request.seed;
-  std::vector<std::filesystem::path> inputs;
-  std::error_code error;
-  if (std::filesystem::is_regular_file(scene, error)) inputs.emplace_back(scene);
-  sim::simulate(resolved, out_dir, {0, request.force, inputs});
+  sim::SceneChanges changes;
+  changes.rig = request.rig;
+  changes.camera_size = request.camera_size;
+  changes.projector_size = request.projector_size;
+  changes.seed = request.seed;
+  sim::simulate(sim::resolve_scene(scene, changes), out_dir, {0, request.force, sim::scene_files(scene)});
   const std::filesystem::path capture = out_dir / "capture";
   if (std::filesystem::exists(capture / "manifest.json")) return {capture};
   std::vector<std::filesystem::path> poses;

@@ -180,4 +180,23 @@ Scene resolve_scene(const std::string& name_or_file, const std::string& rig) {
                    ") nor a scene file");
 }
 
+Scene resolve_scene(const std::string& name_or_file, const SceneChanges& changes) {
+  Scene scene = resolve_scene(name_or_file, changes.rig);
+  if (!changes.camera_size.empty()) resize_device(scene.camera, changes.camera_size);
+  if (!changes.projector_size.empty()) resize_device(scene.projector, changes.projector_size);
+  if (changes.supersample) scene.render.supersample = *changes.supersample;
+  if (changes.dot_spacing) {
+    if (*changes.dot_spacing == 1) throw InputError("--dot-spacing must be 0 (Gray code only) or at least 2");
+    scene.capture.dot_spacing = *changes.dot_spacing;
+  }
+  if (changes.seed) scene.render.seed = *changes.seed;
+  return scene;
+}
+
+std::vector<std::filesystem::path> scene_files(const std::string& name_or_file) {
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(name_or_file, ec)) return {name_or_file};
+  return {};
+}
+
 }  // namespace rfrecon::sim

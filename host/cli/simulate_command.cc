@@ -1,9 +1,6 @@
 // `rfrecon simulate`: renders a built-in or file scene with the synthetic rig into a capture + ground-truth directory.
-#include <filesystem>
 #include <iostream>
 #include <optional>
-#include <system_error>
-#include <vector>
 
 #include <spdlog/spdlog.h>
 
@@ -11,7 +8,6 @@
 #include "host/cli/commands.h"
 #include "host/cli/number_checks.h"
 #include "host/cli/size_option.h"
-#include "host/core/errors.h"
 #include "sim/builtin_rigs.h"
 #include "sim/builtin_scenes.h"
 #include "sim/simulate.h"
@@ -43,22 +39,18 @@ void run_simulate(const SimulateCommandOptions& o) {
   }
   if (o.scene.empty()) throw CLI::RequiredError("--scene (a built-in name, see --list, or a scene file)");
   if (o.out.empty()) throw CLI::RequiredError("--output");
-  sim::Scene scene = sim::resolve_scene(o.scene, o.rig);
-  if (!o.camera_size.empty()) sim::resize_device(scene.camera, parse_size(o.camera_size, "--camera"));
-  if (!o.projector_size.empty()) sim::resize_device(scene.projector, parse_size(o.projector_size, "--projector"));
-  if (o.supersample) scene.render.supersample = *o.supersample;
-  if (o.dot_spacing) {
-    if (*o.dot_spacing == 1) throw InputError("--dot-spacing must be 0 (Gray code only) or at least 2");
-    scene.capture.dot_spacing = *o.dot_spacing;
-  }
-  if (o.seed) scene.render.seed = *o.seed;
+  sim::SceneChanges changes;
+  changes.rig = o.rig;
+  if (!o.camera_size.empty()) changes.camera_size = parse_size(o.camera_size, "--camera");
+  if (!o.projector_size.empty()) changes.projector_size = parse_size(o.projector_size, "--projector");
+  changes.supersample = o.supersample;
+  changes.dot_spacing = o.dot_spacing;
+  changes.seed = o.seed;
+  const sim::Scene scene = sim::resolve_scene(o.scene, changes);
   spdlog::info("simulate: scene '{}', camera {}x{}, projector {}x{}, supersample {}x{}, seed {}", scene.name,
                scene.camera.size.width, scene.camera.size.height, scene.projector.size.width,
                scene.projector.size.height, scene.render.supersample, scene.render.supersample, scene.render.seed);
-  std::vector<std::filesystem::path> inputs;
-  std::error_code ec;
-  if (std::filesystem::is_regular_file(o.scene, ec)) inputs.emplace_back(o.scene);
-  sim::simulate(scene, o.out, {o.threads, o.force, inputs});
+  sim::simulate(scene, o.out, {o.threads, o.force, sim::scene_files(o.scene)});
   spdlog::info("simulate: wrote {}", o.out);
 }
 }  // namespace

@@ -13,9 +13,6 @@
 namespace rfrecon::cli {
 
 namespace {
-// Thresholds are linear (1 = full scale): above half of it no pixel of any capture could pass.
-constexpr double kMaxThreshold = 0.5;
-
 struct TransportOptions {
   pipeline::TransportRequest request;
   CaptureOptions capture;
@@ -70,24 +67,24 @@ void add_transport_command(CLI::App& app) {
   add_tile_timeout_option(command);
   auto& setup = options->request.setup;
   command->add_option("-k,--entries", setup.entries_per_pixel, "Entries kept per camera pixel (K)")
-      ->check(CLI::Range(1, 64))
+      ->check(CLI::Range(1, transport::kMaxEntriesPerPixel))
       ->capture_default_str();
   command
       ->add_option("--black-threshold", setup.thresholds.black,
                    "Lit when white - black exceeds this (linear, 1 = full scale)")
-      ->check(finite_range(0.0, kMaxThreshold))
+      ->check(finite_range(0.0, transport::kMaxThreshold))
       ->capture_default_str();
   command
       ->add_option("--white-threshold", setup.thresholds.white,
                    "Gray bit trusted when |pattern - inverse| exceeds this (linear; 0, the default: 4.5 DN at the "
                    "capture's bit depth); Gray-code-only captures also need 3 sigma of each pixel's noise and 2 % of "
                    "its white - black")
-      ->check(finite_range(0.0, kMaxThreshold));
+      ->check(finite_range(0.0, transport::kMaxThreshold));
   command
       ->add_option("--noise-threshold", setup.thresholds.noise,
                    "Transport entries at or below are dropped (linear; 0, the default: 2.5 DN at the capture's bit "
                    "depth)")
-      ->check(finite_range(0.0, kMaxThreshold));
+      ->check(finite_range(0.0, transport::kMaxThreshold));
   add_entry_option(command, options->request.entries);
   command->add_option("--readers", options->request.readers, "Threads reading frames ahead of the devices")
       ->check(CLI::Range(1, 64))

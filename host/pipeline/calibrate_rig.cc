@@ -46,10 +46,11 @@ void add_to_background(cv::Mat& background, const cv::Mat& image) {
   }
 }
 
+}  // namespace
+
 std::string pose_name(const fs::path& pose_dir) {
   return pose_dir.filename().empty() ? pose_dir.parent_path().filename().string() : pose_dir.filename().string();
 }
-}  // namespace
 
 RigCalibrationRun calibrate_poses(const std::vector<PoseCapture>& poses, const calib::BoardSpec& board,
                                   const calib::CalibrationOptions& options, StagingDirectory* report,

@@ -32,6 +32,9 @@ struct RigCalibrationRun {
   std::vector<sched::RunReport> schedule;  // per stage, summed over the poses
 };
 
+// A pose's name in the report and the per-view errors: its capture directory's name ("pose_03", also for "pose_03/").
+std::string pose_name(const std::filesystem::path& pose_dir);
+
 // One board pose's capture from any source: its name in the report and the per-view errors, its frames (a capture
 // directory, a camera, memory; the source's name stands for the pose in messages) and their manifest.
 struct PoseCapture {

@@ -49,20 +49,13 @@ void check_image_extension(const std::filesystem::path& output) {
 }
 }  // namespace
 
-DualImageRun dual_image(const DualImageRequest& request, std::vector<cl::DeviceContext>& devices,
-                        cl::ProgramCache& programs) {
-  const OutputPath output{request.output, "--output", request.force};
-  const OutputPath summary_output{request.summary, "--summary", request.force};
-  check_output_file(output, {request.transport});
-  check_image_extension(request.output);
-  if (!request.summary.empty()) check_output_file(summary_output, {request.transport});
-  check_distinct_outputs({output, summary_output});
-  const auto transport = transport::read_transport(request.transport);
+DualImageRun view_product(const transport::CompressedTransport& transport, bool primal,
+                          std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
   const cl::EntryChoice entries;  // auto: each device on the entry that suits it
   DualImageRun run;
   StageClock clock;
   clock.time("kernels", [&] {
-    if (request.primal) {
+    if (primal) {
       run.size = transport.setup.camera_size;
       run.product = transport::primal_on_devices(devices, programs, entries, transport,
                                                  std::vector<float>(transport.projector_pixels(), 1.0f));
@@ -73,6 +66,19 @@ DualImageRun dual_image(const DualImageRequest& request, std::vector<cl::DeviceC
     }
   });
   run.seconds = clock.total_seconds();
+  return run;
+}
+
+DualImageRun dual_image(const DualImageRequest& request, std::vector<cl::DeviceContext>& devices,
+                        cl::ProgramCache& programs) {
+  const OutputPath output{request.output, "--output", request.force};
+  const OutputPath summary_output{request.summary, "--summary", request.force};
+  check_output_file(output, {request.transport});
+  check_image_extension(request.output);
+  if (!request.summary.empty()) check_output_file(summary_output, {request.transport});
+  check_distinct_outputs({output, summary_output});
+  const auto transport = transport::read_transport(request.transport);
+  DualImageRun run = view_product(transport, request.primal, devices, programs);
   const cv::Mat image(run.size, CV_32F, run.product.image.data());
   const auto bytes = encode(image, request.output, run.white);
   AtomicFile image_file(request.output);

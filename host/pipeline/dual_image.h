@@ -23,6 +23,11 @@ struct DualImageRun {
   double seconds = 0.0;
 };
 
+// T^T 1 (projector size) or, with `primal`, T 1 (camera size) of a transport in memory, on `devices` with the entry
+// that suits each: the product and its image size, as dual_image computes them for its file.
+DualImageRun view_product(const transport::CompressedTransport& transport, bool primal,
+                          std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs);
+
 // Throws UsageError (before reading) for an output check_output_file refuses or an extension other than .png, .pgm,
 // .tif, .tiff; InputError naming the file for a bad T.h5; OutputError when an output cannot be written. The image
 // and the summary are renamed into place only once both are written.

@@ -16,7 +16,6 @@ inline constexpr int kTransportFileVersion = 2;
 
 // What a T.h5 may state (docs/formats.md); the reader refuses more before allocating anything.
 inline constexpr int kMaxTransportImageSide = 16384;  // camera and projector width and height, pixels
-inline constexpr int kMaxEntriesPerPixel = 64;        // K, as `rfrecon transport -k` allows
 // Camera pixels x K: entries are addressed by int32 (the dual's CSR offsets).
 inline constexpr std::int64_t kMaxTransportEntries = std::numeric_limits<std::int32_t>::max();
 

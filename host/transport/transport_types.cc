@@ -1,14 +1,34 @@
-// Construction of an empty compressed transport (on huge pages, host/core/huge_pages.h); the kernels' build options.
+// Construction of an empty compressed transport (on huge pages, host/core/huge_pages.h); the kernels' build options;
+// the setup's ranges.
 #include "host/transport/transport_types.h"
 
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <utility>
 
+#include "host/core/errors.h"
 #include "host/core/huge_pages.h"
 #include "kernels/common/lanes.h"
 
 namespace rfrecon::transport {
+
+void check_setup_ranges(const TransportSetup& setup) {
+  const int k = setup.entries_per_pixel;
+  if (k < 1 || k > kMaxEntriesPerPixel) {
+    throw UsageError("-k (entries per pixel) is " + std::to_string(k) + ": from 1 to " +
+                     std::to_string(kMaxEntriesPerPixel) + " is taken");
+  }
+  const std::pair<const char*, float> thresholds[] = {{"--black-threshold", setup.thresholds.black},
+                                                      {"--white-threshold", setup.thresholds.white},
+                                                      {"--noise-threshold", setup.thresholds.noise}};
+  for (const auto& [option, value] : thresholds) {
+    if (!(value >= 0.0f && value <= kMaxThreshold)) {  // NaN too
+      throw UsageError(std::string(option) + " is " + std::to_string(value) + ": from 0 to " +
+                       std::to_string(kMaxThreshold) + " is taken");
+    }
+  }
+}
 
 CompressedTransport make_empty_decoding(const TransportSetup& setup, CompressedTransport storage) {
   CompressedTransport transport = std::move(storage);

@@ -73,6 +73,16 @@ struct TransportSetup {
   capture::SampleMap samples;
 };
 
+// The documented ranges of the setup's options (docs/cli.md#option-ranges): K from 1, each threshold from 0 (linear,
+// 1 = full scale; 0 for white and noise: automatic) to half of full scale, above which no pixel of any capture could
+// pass.
+inline constexpr int kMaxEntriesPerPixel = 64;
+inline constexpr float kMaxThreshold = 0.5f;
+
+// Throws UsageError naming the option (-k, --black-threshold, --white-threshold, --noise-threshold) and its range
+// when K or a threshold lies outside it, as the command line refuses it.
+void check_setup_ranges(const TransportSetup& setup);
+
 // The build options of the transport kernels for K entries per pixel, then `extra`: "-DRF_K=16" for another K than
 // the parameters header's, nothing for RF_K itself, so that every stage shares one program per kernel file then (and
 // a board binary needs no option).

@@ -124,13 +124,18 @@ py::dict reconstruction_dict(rfrecon::ReconstructResult result) {
   return maps;
 }
 
+// The maps of a reconstruct() dict (a user's dict: a missing key is an InputError naming it), and its summary.
 rfrecon::ReconstructResult reconstruction_of(const py::dict& maps) {
+  const auto map = [&](const char* key) {
+    if (!maps.contains(key)) throw rfrecon::InputError(std::string("reconstruction dict: missing key '") + key + "'");
+    return mat_of(maps[key].cast<py::array>());
+  };
   rfrecon::ReconstructResult result;
-  result.maps.depth_mm = mat_of(maps["depth_mm"].cast<py::array>());
-  result.maps.points_mm = mat_of(maps["points_mm"].cast<py::array>());
-  result.maps.normals = mat_of(maps["normals"].cast<py::array>());
-  result.maps.confidence = mat_of(maps["confidence"].cast<py::array>());
-  if (maps.contains("white") && !maps["white"].is_none()) result.maps.white = mat_of(maps["white"].cast<py::array>());
+  result.maps.depth_mm = map("depth_mm");
+  result.maps.points_mm = map("points_mm");
+  result.maps.normals = map("normals");
+  result.maps.confidence = map("confidence");
+  if (maps.contains("white") && !maps["white"].is_none()) result.maps.white = map("white");
   const py::object summary = maps.contains("summary") ? py::object(maps["summary"]) : py::object(py::dict());
   result.summary = nlohmann::json::parse(py::module_::import("json").attr("dumps")(summary).cast<std::string>());
   return result;
@@ -343,7 +348,8 @@ PYBIND11_MODULE(_rfrecon, module) {
       },
       py::arg("file"), "T.h5 as `rfrecon transport` writes it (docs/formats.md).");
   module.def("write_transport", &rfrecon::write_transport, py::arg("transport"), py::arg("file"),
-             py::call_guard<py::gil_scoped_release>(), "T.h5, replacing an existing file atomically.");
+             py::arg("force") = false, py::call_guard<py::gil_scoped_release>(),
+             "T.h5, written atomically; an existing file only with force.");
   module.def(
       "read_rig",
       [](const std::filesystem::path& file) {
@@ -352,18 +358,23 @@ PYBIND11_MODULE(_rfrecon, module) {
       py::arg("file"), "rig.yaml as a dict of OpenCV's names (float64 arrays, (width, height) sizes).");
   module.def(
       "write_rig",
-      [](const py::dict& rig, const std::filesystem::path& file) {
+      [](const py::dict& rig, const std::filesystem::path& file, bool force) {
         const rfrecon::Rig native = rfrecon::python::rig_of(rig);
         const py::gil_scoped_release release;
-        rfrecon::write_rig(native, file);
+        rfrecon::write_rig(native, file, force);
       },
-      py::arg("rig"), py::arg("file"), "rig.yaml, replacing an existing file atomically.");
+      py::arg("rig"), py::arg("file"), py::arg("force") = false,
+      "rig.yaml, written atomically; an existing file only with force.");
   module.def(
       "write_reconstruction",
       [](const py::dict& maps, const std::filesystem::path& dir, bool force) {
         const rfrecon::ReconstructResult result = reconstruction_of(maps);
         const py::gil_scoped_release release;
-        rfrecon::write_reconstruction(result, dir, force);
+        try {
+          rfrecon::write_reconstruction(result, dir, force);
+        } catch (const std::invalid_argument& e) {  // a map of another type or size than depth_mm's
+          throw rfrecon::InputError(std::string("reconstruction dict: ") + e.what());
+        }
       },
       py::arg("reconstruction"), py::arg("dir"), py::arg("force") = false,
       "The directory `rfrecon reconstruct` writes (depth.tiff, points.ply, ...), from reconstruct()'s dict; an "

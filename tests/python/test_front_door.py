@@ -161,6 +161,34 @@ def test_errors_name_what_is_wrong(session, capture, transport, plane, tmp_path)
         session.reconstruct(transport, rig, crease="8")
 
 
+def test_out_of_range_options_and_existing_outputs_are_refused(session, capture, transport, plane, tmp_path):
+    for arguments, option in [((100,), "-k"), ((0,), "-k"), ((8, -0.1), "--black-threshold"),
+                              ((8, 0.04, float("nan")), "--white-threshold"), ((8, 0.04, 0.0, 0.6), "--noise-threshold")]:
+        with pytest.raises(rfrecon.UsageError, match=option) as error:
+            session.transport(capture, *arguments)
+        assert error.value.exit_code == 2
+
+    rig = rfrecon.read_rig(plane / "truth" / "rig.yaml")
+    for name, write in [("T.h5", lambda file, **force: rfrecon.write_transport(transport, file, **force)),
+                        ("rig.yaml", lambda file, **force: rfrecon.write_rig(rig, file, **force))]:
+        existing = tmp_path / name
+        existing.write_bytes(b"an input of the user's")
+        with pytest.raises(rfrecon.UsageError, match="exists") as error:
+            write(existing)
+        assert error.value.exit_code == 2 and existing.read_bytes() == b"an input of the user's"  # nothing lost
+        write(existing, force=True)
+        assert existing.read_bytes() != b"an input of the user's"
+    np.testing.assert_array_equal(rfrecon.read_transport(tmp_path / "T.h5").weights, transport.weights)
+
+    maps = session.reconstruct(transport, rig, "triangulate")
+    wrong_type = dict(maps, depth_mm=maps["depth_mm"].astype(np.float64))
+    with pytest.raises(rfrecon.InputError, match="reconstruction dict: .*depth_mm must be CV_32FC1"):
+        rfrecon.write_reconstruction(wrong_type, tmp_path / "wrong-type")
+    without_normals = {key: value for key, value in maps.items() if key != "normals"}
+    with pytest.raises(rfrecon.InputError, match="missing key 'normals'"):
+        rfrecon.write_reconstruction(without_normals, tmp_path / "without-normals")
+
+
 def test_progress_logs_and_cancellation(plane):
     steps, lines = [], []
     session = rfrecon.Session(progress=lambda label, done, total, unit: steps.append((label, done, total, unit)),
