@@ -16,6 +16,7 @@
 
 #include "calib/rig.h"
 #include "calib/stereo_calibration.h"
+#include "host/acquire/capture_run.h"
 #include "host/capture/manifest.h"
 #include "host/cl/error.h"
 #include "host/core/errors.h"
@@ -44,8 +45,17 @@ using depth::depth_option_table;
 using depth::set_depth_option;
 using Reconstruction = outputs::Reconstruction;  // depth_mm, points_mm, normals, confidence, white
 
-// The errors, each with the tool's exit code (docs/cli.md): UsageError (2), InputError (3), ProcessingError (6) and
-// OutputError (8) of host/core/errors.h, and these from the OpenCL side:
+// The capture seams (docs/capture.md): implement Camera for a vendor SDK (and Projector for a display of your own), or
+// open the drivers by the command line's specs (open_camera, open_projector).
+using Camera = acquire::Camera;
+using CameraFormat = acquire::CameraFormat;
+using Projector = acquire::Projector;
+using CaptureOptions = acquire::CaptureRunOptions;  // dot spacing, exposures (HDR), latency, retries, timeout
+using CaptureReport = acquire::CaptureRunReport;    // the manifest written, latency, grabs, frames taken again
+
+// The errors, each with the tool's exit code (docs/cli.md): UsageError (2), InputError (3), ProcessingError (6),
+// OutputError (8) and HardwareError (10: a camera or display missing or failing) of host/core/errors.h, and these
+// from the OpenCL side:
 using DeviceSelectionError = cl::DeviceSelectionError;  // 4: no device matches the selection, or none is installed
 using OpenCLError = cl::ClError;                        // 5: an OpenCL call or kernel build failed
 
@@ -167,14 +177,28 @@ class Session {
   std::vector<std::filesystem::path> simulate(const std::string& scene, const std::filesystem::path& out_dir,
                                               const SimulateRequest& request = {});
 
-  // From any thread: the running call throws Cancelled at its next frame read (transport, calibrate) or, for the
-  // other calls, the next call does when it starts; a cancel while no call runs stops the next call.
+  // `rfrecon capture`: shows the protocol on `projector`, grabs `camera` in step (the latency measured first unless
+  // options.latency_frames gives it) and writes the capture directory out_dir, whole or not at all (an existing
+  // non-empty one only with `force`). Throws HardwareError when the camera or display fails or frames stay dropped,
+  // UsageError for a protocol larger than the display. The camera and projector are called from this thread.
+  CaptureReport capture(Projector& projector, Camera& camera, const CaptureOptions& options,
+                        const std::filesystem::path& out_dir, bool force = false);
+
+  // From any thread: the running call throws Cancelled at its next frame read (transport, calibrate) or pattern
+  // (capture) or, for the other calls, the next call does when it starts; a cancel while no call runs stops the next
+  // call.
   void cancel();
 
  private:
   struct State;
   std::unique_ptr<State> state_;
 };
+
+// The capture hardware the command line names (docs/cli.md): "aravis[:ID]", "v4l2:DEVICE" or "gst:PIPELINE" for a
+// camera, "display:N" for the projector (SDL2's display N, full screen). Throws UsageError for a spec of no known kind,
+// HardwareError when the device cannot be opened.
+std::unique_ptr<Camera> open_camera(const std::string& spec);
+std::unique_ptr<Projector> open_projector(const std::string& spec);
 
 // A rig from its measured keys (sizes, intrinsics, distortion, R, T): checked, with E, F and the rectification
 // computed, as read_rig does. Throws InputError starting with `where` and naming the key.

@@ -140,6 +140,17 @@ ReconstructResult Session::reconstruct(const Transport& transport, const Rig& ri
   return {std::move(run.depth.maps), std::move(run.depth.summary), rig};
 }
 
+CaptureReport Session::capture(Projector& projector, Camera& camera, const CaptureOptions& options,
+                               const std::filesystem::path& out_dir, bool force) {
+  const State::Call call(*state_);
+  CaptureOptions checked = options;
+  checked.before_pattern = [this, before = options.before_pattern] {
+    state_->check_cancel();
+    if (before) before();
+  };
+  return acquire::capture_scan(projector, camera, checked, out_dir, force);
+}
+
 std::vector<std::filesystem::path> Session::simulate(const std::string& scene, const std::filesystem::path& out_dir,
                                                      const SimulateRequest& request) {
   const State::Call call(*state_);

@@ -51,6 +51,8 @@ LAYERS = {
     "sched": "host/sched",
     "selfcheck": "host/selfcheck",
     "capture": "host/capture",
+    "acquire": "host/acquire",
+    "drivers": "host/drivers",
     "transport": "host/transport",
     "outputs": "host/outputs",
     "truth": "host/truth",

@@ -19,6 +19,8 @@ GRAPH = {
     "host/sched": ("sched", ["cl"]),
     "host/selfcheck": ("selfcheck", ["cl"]),
     "host/capture": ("capture", ["core"]),
+    "host/acquire": ("acquire", ["capture"]),
+    "host/drivers": ("drivers", ["acquire"]),
     "host/transport": ("transport", ["capture", "sched", "kernels"]),
     "host/outputs": ("outputs", ["core"]),
     "host/truth": ("truth", ["core"]),
@@ -26,7 +28,7 @@ GRAPH = {
     "host/evaluation": ("evaluation", ["outputs", "truth"]),
     "host/pipeline": ("pipeline", ["depth", "evaluation", "sim"]),
     "calib": ("calib", ["core"]),
-    "sim": ("sim", ["capture", "calib", "truth"]),
+    "sim": ("sim", ["capture", "acquire", "calib", "truth"]),
     "rfrecon": ("api", ["pipeline"]),
 }
 DIRS = {name: d for d, (name, _) in GRAPH.items()}
@@ -94,7 +96,7 @@ class CheckLayersTest(unittest.TestCase):
     def test_clean_tree_passes(self):
         rc, out = self.tree.run()
         self.assertEqual(rc, 0, out)
-        self.assertIn("16 layers", out)
+        self.assertIn("18 layers", out)
 
     def test_front_door_users_include_only_the_front_door(self):
         self.tree.write("python/src/module.cc", '#include "rfrecon/rfrecon.h"\n#include "python/src/arrays.h"\n'
@@ -220,7 +222,7 @@ class CheckLayersTest(unittest.TestCase):
         wrong = graph.replace("depth: transport outputs calib", "# a comment\ndepth: transport, calib sched")
         wrong = wrong.replace("truth: core\n", "")
         self.tree.write("docs/architecture.md", "# Architecture\n\n" + wrong)
-        self.assertFails("docs/architecture.md:14: layer depth: the doc lists 'calib sched transport', CMake has "
+        self.assertFails("docs/architecture.md:16: layer depth: the doc lists 'calib sched transport', CMake has "
                          "'calib outputs transport' (missing outputs; not in CMake: sched)",
                          "docs/architecture.md:3: layer truth is missing from the ```text layers block",
                          args=("--check-doc", "docs/architecture.md"))

@@ -144,6 +144,9 @@ void validate_manifest(const CaptureManifest& manifest, const std::string& where
     fail("dot_spacing must be 0 or 2 to " + std::to_string(kMaxDotSpacing));
   }
   (void)response_gamma(manifest.camera_response, where);
+  for (double exposure : manifest.exposures_us) {
+    if (!(exposure > 0.0 && std::isfinite(exposure))) fail("exposures_us must hold positive microseconds");
+  }
   std::map<PatternKind, int> plain_count;
   std::set<std::tuple<int, int, bool>> gray_seen;
   std::set<std::pair<int, int>> dots_seen;
@@ -246,6 +249,7 @@ CaptureManifest read_manifest(const fs::path& capture_dir, FramePaths frame_path
   manifest.bit_depth = optional_field(root, "bit_depth", 8, file);
   manifest.black_level = optional_field(root, "black_level", 0.0, file);
   manifest.camera_response = optional_field(root, "camera_response", std::string("linear"), file);
+  manifest.exposures_us = optional_field(root, "exposures_us", std::vector<double>{}, file);
   const auto frames = field<json>(root, "frames", "", file);
   if (!frames.is_array()) throw InputError(file.string() + ": field 'frames' must be an array");
   for (std::size_t i = 0; i < frames.size(); ++i) {
@@ -268,15 +272,16 @@ std::vector<fs::path> capture_files(const fs::path& capture_dir, const CaptureMa
 void write_manifest(const CaptureManifest& manifest, const fs::path& capture_dir) {
   json frames = json::array();
   for (const auto& frame : manifest.frames) frames.push_back(frame_to_json(frame));
-  const json root{{"format", "rfrecon-capture"},
-                  {"version", kManifestVersion},
-                  {"projector_size", size_to_json(manifest.projector_size)},
-                  {"camera_size", size_to_json(manifest.camera_size)},
-                  {"dot_spacing", manifest.dot_spacing},
-                  {"bit_depth", manifest.bit_depth},
-                  {"black_level", manifest.black_level},
-                  {"camera_response", manifest.camera_response},
-                  {"frames", frames}};
+  json root{{"format", "rfrecon-capture"},
+            {"version", kManifestVersion},
+            {"projector_size", size_to_json(manifest.projector_size)},
+            {"camera_size", size_to_json(manifest.camera_size)},
+            {"dot_spacing", manifest.dot_spacing},
+            {"bit_depth", manifest.bit_depth},
+            {"black_level", manifest.black_level},
+            {"camera_response", manifest.camera_response},
+            {"frames", frames}};
+  if (!manifest.exposures_us.empty()) root["exposures_us"] = manifest.exposures_us;
   write_file_atomically(capture_dir / kManifestFileName, root.dump(2) + "\n");
 }
 

@@ -27,6 +27,7 @@ struct CaptureManifest {
   int bit_depth = 8;                       // bits per camera sample: 8, 10, 12 or 16 (stored in 8- or 16-bit files)
   double black_level = 0.0;                // camera reading with no light, in digital numbers
   std::string camera_response = "linear";  // "linear" or "gamma:<g>" (reading = linear^(1/g))
+  std::vector<double> exposures_us;        // as captured: one exposure, or several merged into each frame (HDR)
   std::vector<Frame> frames;
 };
 

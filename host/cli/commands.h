@@ -38,6 +38,7 @@ void add_devices_command(CLI::App& app);
 void add_selfcheck_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_patterns_command(CLI::App& app);
+void add_capture_command(CLI::App& app);
 void add_transport_command(CLI::App& app);
 void add_check_command(CLI::App& app);
 void add_dual_command(CLI::App& app);

@@ -27,6 +27,8 @@ void add_evaluate_command(CLI::App& app) {
   command->add_option("--object", options->object, "Object to evaluate (default: the scene's first object)");
   command->add_option("-o,--output", options->report, "Report JSON (default: RECONSTRUCTION/evaluation.json)");
   command->add_option("--error-map", options->error_map, "Error-map PNG (default: RECONSTRUCTION/error_map.png)");
+  command->add_option("--same-pixels-as", options->same_pixels_as,
+                      "Other reconstructions of the scene: count only the pixels they all reconstructed");
   command->add_flag("--force", options->force, "Replace an existing report and error map");
   command->callback([options] { run_evaluate(*options); });
 }

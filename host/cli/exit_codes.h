@@ -14,6 +14,7 @@ enum ExitCode : int {
   kExitSelfcheck = 7,   // `rfrecon selfcheck` found a device whose results differ from the C++ reference
   kExitOutput = 8,      // an output could not be written (permission, read-only file system, disk full)
   kExitCheck = 9,       // `rfrecon check` found a problem in the capture
+  kExitHardware = 10,   // a camera or display is missing, refuses a setting, stops answering or drops frames
 };
 
 }  // namespace rfrecon::cli

@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
   add_selfcheck_command(app);
   add_simulate_command(app);
   add_patterns_command(app);
+  add_capture_command(app);
   add_transport_command(app);
   add_check_command(app);
   add_dual_command(app);
@@ -65,6 +66,8 @@ int main(int argc, char** argv) {
     return fail(kExitOutput, "cannot write output", error);
   } catch (const rfrecon::InputError& error) {
     return fail(kExitInput, "input error", error);
+  } catch (const rfrecon::HardwareError& error) {
+    return fail(kExitHardware, "capture hardware", error);
   } catch (const rfrecon::ProcessingError& error) {
     return fail(kExitProcessing, "cannot process", error);
   } catch (const rfrecon::cl::DeviceSelectionError& error) {

@@ -25,6 +25,13 @@ class OutputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A camera or display that is missing, refuses a setting, stops answering or shows it did not capture what was
+// shown (a dropped frame that a retry did not fix). The message names the device and what to check.
+class HardwareError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 // Valid input that the method cannot process: no checkerboard found, too few poses, everything masked.
 class ProcessingError : public std::runtime_error {
  public:

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "host/evaluation/evaluation.h"
 
@@ -15,6 +16,9 @@ struct EvaluationRequest {
   std::filesystem::path report;              // default: reconstruction_dir / evaluation.json
   std::filesystem::path error_map;           // default: reconstruction_dir / error_map.png
   bool force = false;                        // replace an existing report and error map
+  // Other reconstructions of the same scene: only the pixels every one of them reconstructed count, so that methods
+  // or captures are compared on the same pixels.
+  std::vector<std::filesystem::path> same_pixels_as;
 };
 
 struct EvaluationRun {
@@ -25,7 +29,8 @@ struct EvaluationRun {
 
 // Reads both, evaluates and writes the report and the error map (each atomically). Throws UsageError before reading
 // for outputs that host/core/output_path.h refuses (an input, an existing file without force), InputError naming the
-// file for a missing or mis-sized map, ProcessingError when the object is not visible.
+// file for a missing or mis-sized map (of a same_pixels_as reconstruction too), ProcessingError when the object is not
+// visible.
 EvaluationRun evaluate_directory(const EvaluationRequest& request);
 
 }  // namespace rfrecon::evaluation

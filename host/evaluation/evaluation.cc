@@ -183,24 +183,26 @@ cv::Mat error_map(const Evaluation& evaluation) {
 }
 
 nlohmann::ordered_json evaluation_report(const Evaluation& e, const std::string& error_map_file) {
-  return {{"format", "rfrecon-evaluation"},
-          {"version", 1},
-          {"reconstruction", e.reconstruction_name},
-          {"truth", e.truth_dir.string()},
-          {"object",
-           {{"name", e.object_name},
-            {"shape", e.object_shape},
-            {"id", e.object_label},
-            {"size_mm", e.object_size_mm},
-            {"size_rule", e.size_rule}}},
-          {"object_pixels", stats_json(e.object, e.object_size_mm)},
-          {"all_pixels", stats_json(e.all, e.object_size_mm)},
-          {"error_map",
-           {{"file", error_map_file},
-            {"colormap", "turbo"},
-            {"full_scale_mm", error_map_full_scale_mm(e)},
-            {"no_reconstruction", "black"},
-            {"outside_object", "grey"}}}};
+  nlohmann::ordered_json report{{"format", "rfrecon-evaluation"},
+                                {"version", 1},
+                                {"reconstruction", e.reconstruction_name},
+                                {"truth", e.truth_dir.string()},
+                                {"object",
+                                 {{"name", e.object_name},
+                                  {"shape", e.object_shape},
+                                  {"id", e.object_label},
+                                  {"size_mm", e.object_size_mm},
+                                  {"size_rule", e.size_rule}}},
+                                {"object_pixels", stats_json(e.object, e.object_size_mm)},
+                                {"all_pixels", stats_json(e.all, e.object_size_mm)},
+                                {"error_map",
+                                 {{"file", error_map_file},
+                                  {"colormap", "turbo"},
+                                  {"full_scale_mm", error_map_full_scale_mm(e)},
+                                  {"no_reconstruction", "black"},
+                                  {"outside_object", "grey"}}}};
+  if (!e.same_pixels_as.empty()) report["same_pixels_as"] = e.same_pixels_as;
+  return report;
 }
 
 std::string evaluation_table(const Evaluation& e) {

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
@@ -51,10 +52,11 @@ struct Evaluation {
   int object_label = 0;
   double object_size_mm = 0.0;
   std::string size_rule;
-  ErrorStats object;       // truth object_id == object_label and finite truth depth
-  ErrorStats all;          // every pixel with finite truth depth (every object)
-  cv::Mat depth_error_mm;  // CV_32F: reconstructed - truth where both finite, NaN elsewhere
-  cv::Mat object_mask;     // CV_8U: 255 on the object's pixels
+  ErrorStats object;                        // truth object_id == object_label and finite truth depth
+  ErrorStats all;                           // every pixel with finite truth depth (every object)
+  cv::Mat depth_error_mm;                   // CV_32F: reconstructed - truth where both finite, NaN elsewhere
+  cv::Mat object_mask;                      // CV_8U: 255 on the object's pixels
+  std::vector<std::string> same_pixels_as;  // reconstructions whose pixels alone counted (none: every pixel)
 };
 
 // Compares the reconstruction's depth_mm and normals with the truth. Throws InputError when the sizes differ

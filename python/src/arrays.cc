@@ -83,4 +83,12 @@ py::object transport_array(const py::object& transport, const std::string& name)
   throw InputError("no transport array '" + name + "'");
 }
 
+cv::Mat frame_of(const pybind11::array& frame, const std::string& where) {
+  if (frame.ndim() != 2) throw InputError(where + ": a frame must be a 2-D array (rows, columns)");
+  if (py::isinstance<py::array_t<std::uint8_t>>(frame) || py::isinstance<py::array_t<std::uint16_t>>(frame)) {
+    return mat_of(frame).clone();
+  }
+  throw InputError(where + ": a frame must be uint8 or uint16, not " + py::str(frame.dtype()).cast<std::string>());
+}
+
 }  // namespace rfrecon::python

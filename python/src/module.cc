@@ -8,12 +8,15 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "python/src/arrays.h"
+#include "python/src/capture_bindings.h"
 #include "python/src/rig_dict.h"
 #include "rfrecon/rfrecon.h"
 
 namespace py = pybind11;
 using rfrecon::python::array_of;
+using rfrecon::python::frame_of;
 using rfrecon::python::mat_of;
+using rfrecon::python::without_gil;
 
 namespace {
 
@@ -32,6 +35,7 @@ void register_errors(py::module_& module) {
   static auto opencl = derived("OpenCLError", 5);
   static auto processing = derived("ProcessingError", 6);
   static auto output = derived("OutputError", 8);
+  static auto hardware = derived("HardwareError", 10);
   static auto cancelled = derived("Cancelled", 130);
   py::register_exception_translator([](std::exception_ptr thrown) {
     try {
@@ -48,6 +52,8 @@ void register_errors(py::module_& module) {
       PyErr_SetString(processing.ptr(), e.what());
     } catch (const rfrecon::OutputError& e) {
       PyErr_SetString(output.ptr(), e.what());
+    } catch (const rfrecon::HardwareError& e) {
+      PyErr_SetString(hardware.ptr(), e.what());
     } catch (const rfrecon::Cancelled& e) {
       PyErr_SetString(cancelled.ptr(), e.what());
     }
@@ -56,23 +62,6 @@ void register_errors(py::module_& module) {
 
 cv::Size size_of(const std::pair<int, int>& width_height) { return {width_height.first, width_height.second}; }
 std::pair<int, int> pair_of(cv::Size size) { return {size.width, size.height}; }
-
-// A frame handed over from Python: 2-D uint8 or uint16, copied into memory the library owns.
-cv::Mat frame_of(const py::array& frame, const std::string& where) {
-  if (frame.ndim() != 2) throw rfrecon::InputError(where + ": a frame must be a 2-D array (rows, columns)");
-  if (py::isinstance<py::array_t<std::uint8_t>>(frame) || py::isinstance<py::array_t<std::uint16_t>>(frame)) {
-    return mat_of(frame).clone();
-  }
-  throw rfrecon::InputError(where + ": a frame must be uint8 or uint16, not " +
-                            py::str(frame.dtype()).cast<std::string>());
-}
-
-// What `call` returns, run without the GIL: library calls may log, and the log callback takes the GIL.
-template <typename Call>
-auto without_gil(const Call& call) {
-  const py::gil_scoped_release release;
-  return call();
-}
 
 // A Python callable shared with the library's threads: the last copy may go in a thread without the GIL, so the
 // reference is dropped under it.
@@ -337,8 +326,9 @@ PYBIND11_MODULE(_rfrecon, module) {
           "Renders a built-in scene or scene file into out_dir (capture/ and truth/) as `rfrecon simulate`; returns "
           "the capture directories (one per board pose for multi-view scenes).")
       .def("cancel", &rfrecon::Session::cancel,
-           "From any thread: the running transport or calibrate raises Cancelled at its next frame; other calls "
-           "when they start.");
+           "From any thread: the running transport or calibrate raises Cancelled at its next frame, capture at its "
+           "next pattern; other calls when they start.");
+  rfrecon::python::bind_capture(module);
 
   module.def(
       "read_transport",

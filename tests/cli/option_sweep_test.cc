@@ -146,7 +146,7 @@ TEST_F(OptionSweepTest, ValuesOutsideTheRangesAreUsageErrors) {
   const std::string reconstruct =
       "reconstruct " + quoted(transport_file(8)) + " --calib " + quoted(rig()) + " -o " + output("refused") + " ";
   const std::string transport = "transport " + quoted(capture()) + " -o " + output("refused.h5") + " ";
-  for (const std::string arguments :
+  for (const std::string& arguments :
        {reconstruct + "--epipolar-tolerance 0.001", reconstruct + "--saturation 0.05",
         reconstruct + "--edge-relative 2000", reconstruct + "--edge-footprint 11", reconstruct + "--jump 0",
         reconstruct + "--crease 0.5", reconstruct + "--passes 21", reconstruct + "--iterations 0",
