@@ -62,10 +62,7 @@ Manifest make_manifest(cv::Size projector_size, cv::Size camera_size, int bit_de
   manifest.camera_size = camera_size;
   manifest.bit_depth = bit_depth;
   manifest.dot_spacing = dot_spacing;
-  const auto patterns = capture::make_protocol({projector_size, dot_spacing});
-  for (std::size_t i = 0; i < patterns.size(); ++i) {
-    manifest.frames.push_back({patterns[i], capture::pattern_file_name(i, patterns[i])});
-  }
+  manifest.frames = capture::protocol_frames({projector_size, dot_spacing});
   capture::validate_manifest(manifest, "make_manifest");
   return manifest;
 }

@@ -176,7 +176,7 @@ Scene resolve_scene(const std::string& name_or_file, const std::string& rig) {
     const json scene = read_json_file(file);
     return scene_from_json(rig.empty() ? scene : with_rig(scene, rig), file.string(), file.parent_path());
   }
-  throw InputError("--scene '" + excerpt(name_or_file) + "' is neither a built-in scene (" + known_scenes() +
+  throw InputError("scene '" + excerpt(name_or_file) + "' is neither a built-in scene (" + known_scenes() +
                    ") nor a scene file");
 }
 

@@ -62,11 +62,7 @@ capture::CaptureManifest make_manifest(const CaptureSettings& s, cv::Size camera
   char gamma[32];
   std::snprintf(gamma, sizeof gamma, "gamma:%.17g", s.response_gamma);
   manifest.camera_response = s.response_gamma == 1.0 ? "linear" : gamma;
-  const auto protocol = capture::make_protocol({projector_size, s.dot_spacing});
-  for (std::size_t i = 0; i < protocol.size(); ++i) {
-    const auto& p = protocol[i];
-    manifest.frames.push_back({p, capture::pattern_file_name(i, p, s.format == "tiff" ? ".tiff" : ".png")});
-  }
+  manifest.frames = capture::protocol_frames({projector_size, s.dot_spacing}, s.format == "tiff" ? ".tiff" : ".png");
   return manifest;
 }
 

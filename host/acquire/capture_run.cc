@@ -51,11 +51,8 @@ capture::CaptureManifest scan_manifest(const Camera& camera, const CaptureRunOpt
   manifest.bit_depth = format.bit_depth;
   manifest.black_level = options.black_level_dn.value_or(format.black_level_dn);
   manifest.camera_response = options.camera_response;
-  const auto protocol = capture::make_protocol({projector, options.protocol.dot_spacing});
-  const std::string extension = options.format == "tiff" ? ".tiff" : ".png";
-  for (std::size_t i = 0; i < protocol.size(); ++i) {
-    manifest.frames.push_back({protocol[i], capture::pattern_file_name(i, protocol[i], extension)});
-  }
+  manifest.frames =
+      capture::protocol_frames({projector, options.protocol.dot_spacing}, options.format == "tiff" ? ".tiff" : ".png");
   capture::validate_manifest(manifest, "capture of " + camera.name());
   return manifest;
 }
@@ -194,10 +191,10 @@ class ScanRecorder {
     for (int i = 0; i < latency_frames_; ++i) grab();
     const int attempts = (options_.retries + 1) * (latency_frames_ + 1);
     for (int attempt = 1;; ++attempt) {
-      cv::Mat frame = grab();
+      const cv::Mat frame = grab();
       if (last_.empty() || !same_frame(frame, last_)) {
-        last_ = frame;
-        return frame;
+        last_ = frame.clone();  // the camera may reuse its buffer for the next frame
+        return last_;
       }
       ++repeated_;
       if (attempt >= attempts) {
@@ -214,7 +211,7 @@ class ScanRecorder {
     ++grabs_;
     cv::Mat frame = camera_.grab(options_.timeout);
     capture::check_raw_frame(frame, camera_manifest_, camera_.name() + " frame " + std::to_string(grabs_));
-    return frame.clone();
+    return frame;
   }
 
   Projector& projector_;
@@ -229,15 +226,6 @@ class ScanRecorder {
   std::size_t repeated_ = 0;
 };
 
-int latency_of(Projector& projector, Camera& camera, const CaptureRunOptions& options) {
-  if (options.latency_frames >= 0) return options.latency_frames;
-  LatencyOptions latency;
-  latency.timeout = options.timeout;
-  const int frames = measure_latency_frames(projector, camera, latency);
-  spdlog::info("capture: {} sees a pattern {} frame(s) after {} shows it", camera.name(), frames, projector.name());
-  return frames;
-}
-
 ScanRecorder make_recorder(Projector& projector, Camera& camera, const CaptureRunOptions& options) {
   if (options.format != "png" && options.format != "tiff") {
     throw UsageError("capture format must be png or tiff, got '" + options.format + "'");
@@ -246,12 +234,22 @@ ScanRecorder make_recorder(Projector& projector, Camera& camera, const CaptureRu
     if (!(exposure > 0.0)) throw UsageError("exposures must be positive microseconds");
   }
   auto manifest = scan_manifest(camera, options, protocol_size(projector, options));
-  const auto& exposures = options.exposures_us;
-  camera.lock_exposure(exposures.empty() ? 0.0 : *std::max_element(exposures.begin(), exposures.end()));
-  return ScanRecorder(projector, camera, options, latency_of(projector, camera, options), std::move(manifest));
+  const int latency =
+      options.latency_frames >= 0 ? options.latency_frames : measure_latency(projector, camera, options);
+  return ScanRecorder(projector, camera, options, latency, std::move(manifest));
 }
 
 }  // namespace
+
+int measure_latency(Projector& projector, Camera& camera, const CaptureRunOptions& options) {
+  const auto& exposures = options.exposures_us;
+  camera.lock_exposure(exposures.empty() ? 0.0 : *std::max_element(exposures.begin(), exposures.end()));
+  LatencyOptions latency;
+  latency.timeout = options.timeout;
+  const int frames = measure_latency_frames(projector, camera, latency);
+  spdlog::info("capture: {} sees a pattern {} frame(s) after {} shows it", camera.name(), frames, projector.name());
+  return frames;
+}
 
 CaptureRunReport capture_scan(Projector& projector, Camera& camera, const CaptureRunOptions& options,
                               const fs::path& out_dir, bool force) {

@@ -49,6 +49,10 @@ struct CaptureRunReport {
 CaptureRunReport capture_scan(Projector& projector, Camera& camera, const CaptureRunOptions& options,
                               const std::filesystem::path& out_dir, bool force);
 
+// The latency of the pair (measure_latency_frames) with the camera locked at the options' longest exposure and
+// waiting options.timeout for a frame: what capture_scan measures when options.latency_frames is -1.
+int measure_latency(Projector& projector, Camera& camera, const CaptureRunOptions& options);
+
 // Captures `poses` board poses for `calibrate` into out_dir/pose_01, pose_02, ..., one scan each, calling
 // `before_pose(index)` (0-based) first: it waits for the user (a key, a timer) or moves a simulated board. The
 // latency is measured once. out_dir appears whole or not at all.

@@ -21,17 +21,25 @@ std::string pattern_file_name(std::size_t index, const Pattern& pattern, const s
   return name + extension;
 }
 
+std::vector<Frame> protocol_frames(const ProtocolOptions& protocol, const std::string& extension) {
+  const auto sequence = make_protocol(protocol);
+  std::vector<Frame> frames;
+  frames.reserve(sequence.size());
+  for (std::size_t i = 0; i < sequence.size(); ++i)
+    frames.push_back({sequence[i], pattern_file_name(i, sequence[i], extension)});
+  return frames;
+}
+
 CaptureManifest write_pattern_directory(const std::filesystem::path& out_dir, const ProtocolOptions& protocol,
                                         bool force) {
-  const auto sequence = make_protocol(protocol);
   StagingDirectory staging(out_dir, force);
   CaptureManifest manifest;
   manifest.projector_size = protocol.projector_size;
   manifest.dot_spacing = protocol.dot_spacing;
-  for (std::size_t i = 0; i < sequence.size(); ++i) {
-    const std::string file = pattern_file_name(i, sequence[i]);
-    write_image(staging.path() / file, render_pattern(sequence[i], protocol.projector_size, protocol.dot_spacing));
-    manifest.frames.push_back({sequence[i], file});
+  manifest.frames = protocol_frames(protocol);
+  for (const auto& frame : manifest.frames) {
+    write_image(staging.path() / frame.file,
+                render_pattern(frame.pattern, protocol.projector_size, protocol.dot_spacing));
   }
   write_manifest(manifest, staging.path());
   staging.commit();

@@ -1,9 +1,6 @@
 // Opening the named rig (hardware or simulated) and running the capture on it.
 #include "host/pipeline/capture_rig.h"
 
-#include <algorithm>
-
-#include "host/acquire/latency.h"
 #include "host/core/errors.h"
 #include "host/core/output_path.h"
 #include "host/drivers/open_devices.h"
@@ -60,11 +57,7 @@ std::vector<acquire::CaptureRunReport> capture(const CaptureRequest& request) {
 
 int measure_latency(const CaptureRequest& request) {
   OpenRig rig = open_rig(request);
-  acquire::LatencyOptions options;
-  options.timeout = request.run.timeout;
-  const auto& exposures = request.run.exposures_us;
-  rig.camera_ref().lock_exposure(exposures.empty() ? 0.0 : *std::max_element(exposures.begin(), exposures.end()));
-  return acquire::measure_latency_frames(rig.projector_ref(), rig.camera_ref(), options);
+  return acquire::measure_latency(rig.projector_ref(), rig.camera_ref(), request.run);
 }
 
 }  // namespace rfrecon::pipeline

@@ -31,8 +31,8 @@ struct CaptureRequest {
 // Runs the capture; returns one report per scan (one, or one per pose).
 std::vector<acquire::CaptureRunReport> capture(const CaptureRequest& request);
 
-// The frames between showing a pattern and the camera seeing it (acquire::measure_latency_frames) for the rig the
-// request names.
+// The frames between showing a pattern and the camera seeing it (acquire::measure_latency) for the rig the request
+// names.
 int measure_latency(const CaptureRequest& request);
 
 }  // namespace rfrecon::pipeline

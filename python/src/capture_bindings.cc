@@ -96,7 +96,15 @@ void bind_capture(py::module_& module) {
       .def("name", &Projector::name)
       .def("size", [](const Projector& p) { return std::make_pair(p.size().width, p.size().height); })
       .def(
-          "show", [](Projector& p, const py::array& image) { p.show(frame_of(image, p.name() + " show")); },
+          "show",
+          [](Projector& p, const py::array& image) {
+            const cv::Mat frame = frame_of(image, p.name() + " show");
+            if (frame.type() != CV_8UC1 || frame.size() != p.size()) {
+              throw InputError(p.name() + " show: the image must be uint8 of the projector's size (" +
+                               std::to_string(p.size().height) + ", " + std::to_string(p.size().width) + ")");
+            }
+            p.show(frame);
+          },
           py::arg("image"));
 
   module.def("open_camera", &open_camera, py::arg("spec"), py::call_guard<py::gil_scoped_release>(),
