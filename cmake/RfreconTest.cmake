@@ -19,8 +19,15 @@ function(rfrecon_add_test name)
   if(fixture_count GREATER 1)
     message(FATAL_ERROR "${name}: name one fixture and chain the others with REQUIRES")
   endif()
-  gtest_discover_tests(${name} PROPERTIES LABELS "${ARG_LABELS}" FIXTURES_REQUIRED "${ARG_FIXTURES}"
-    DISCOVERY_TIMEOUT 60 WORKING_DIRECTORY ${CMAKE_BINARY_DIR})
+  gtest_discover_tests(${name} PROPERTIES FIXTURES_REQUIRED "${ARG_FIXTURES}" DISCOVERY_TIMEOUT 60
+    WORKING_DIRECTORY ${CMAKE_BINARY_DIR})
+  # Labels are a list, so they are set by a script ctest reads after the discovered tests (${name}_TESTS).
+  if(ARG_LABELS)
+    set(labels_script ${CMAKE_CURRENT_BINARY_DIR}/${name}_labels.cmake)
+    file(WRITE ${labels_script}
+         "if(${name}_TESTS)\n  set_tests_properties(\${${name}_TESTS} PROPERTIES LABELS \"${ARG_LABELS}\")\nendif()\n")
+    set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${labels_script})
+  endif()
 endfunction()
 
 # rfrecon_add_fixture(NAME COMMAND... [REQUIRES f...]): a ctest fixture setup step (e.g. `rfrecon simulate`), run

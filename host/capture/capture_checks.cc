@@ -39,7 +39,7 @@ std::string number(double value, const char* format = "%.3g") {
   return text;
 }
 
-std::string percent(double share) { return number(100.0 * share, "%.2g") + "%"; }
+std::string percent(double share) { return number(100.0 * share, "%.3g") + "%"; }
 
 double median(std::vector<double> values) { return percentile_of(std::move(values), 0.5); }
 
