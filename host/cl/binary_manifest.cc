@@ -79,14 +79,7 @@ std::string target_macro(const DeviceInfo& info) {
   return "";
 }
 
-nlohmann::json host_kernel_parameters() {
-  return {{"RF_K", RF_K},
-          {"RF_INTEGRATE_INTERLEAVE", RF_INTEGRATE_INTERLEAVE},
-          {"RF_FUSE_INTERLEAVE", RF_FUSE_INTERLEAVE},
-          {"RF_MAX_ROW_WIDTH", RF_MAX_ROW_WIDTH},
-          {"RF_FRAME_BATCH", RF_FRAME_BATCH},
-          {"RF_DOT_SPACINGS", std::vector<int> RF_DOT_SPACINGS}};
-}
+nlohmann::json host_kernel_parameters() { return nlohmann::json::parse(RF_PARAMETERS_JSON); }
 
 ManifestExpectation host_manifest_expectation(const DeviceInfo& info) {
   ManifestExpectation expected;

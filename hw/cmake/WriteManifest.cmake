@@ -1,7 +1,8 @@
 # Script mode helper of the hw/ flows: writes BINARY.json, the manifest of a built FPGA binary (docs/formats.md): board,
-# tool and version, target, the -D target macro, the parameters header's values, kernel names, and the SHA-256 of the
-# kernel sources as cmake/EmbedKernelsSources.cmake computes it for the host (SOURCES relative to KERNEL_DIR, the
-# generated parameters header in GENERATED_DIR). KERNELS, SOURCES and DOT_SPACINGS come comma-separated.
+# tool and version, target, the -D target macro, the parameters (GENERATED_DIR/common/params.json, written with the
+# parameters header by cmake/EmbedKernelsParams.cmake), kernel names, and the SHA-256 of the kernel sources as
+# cmake/EmbedKernelsSources.cmake computes it for the host (SOURCES relative to KERNEL_DIR, the generated parameters
+# header in GENERATED_DIR). KERNELS and SOURCES come comma-separated.
 include(${CMAKE_CURRENT_LIST_DIR}/../../cmake/EmbedKernelsSources.cmake)
 if(NOT EXISTS ${BINARY})
   message(FATAL_ERROR "${BINARY} was not written by ${TOOL}")
@@ -36,10 +37,9 @@ foreach(pair IN ITEMS "binary;${binary_name}" "board;${BOARD}" "device;${DEVICE}
   list(APPEND fields "  \"${key}\": ${quoted}")
 endforeach()
 list(APPEND fields "  \"stand_in\": ${STAND_IN}")
-string(REPLACE "," ", " dot_spacings "${DOT_SPACINGS}")
-list(APPEND fields "  \"parameters\": {\"RF_K\": ${K}, \"RF_INTEGRATE_INTERLEAVE\": ${INTEGRATE_INTERLEAVE}, \
-\"RF_FUSE_INTERLEAVE\": ${FUSE_INTERLEAVE}, \"RF_MAX_ROW_WIDTH\": ${MAX_ROW_WIDTH}, \"RF_FRAME_BATCH\": \
-${FRAME_BATCH}, \"RF_DOT_SPACINGS\": [${dot_spacings}]}")
+file(READ ${GENERATED_DIR}/common/params.json parameters)
+string(STRIP "${parameters}" parameters)
+list(APPEND fields "  \"parameters\": ${parameters}")
 json_list(kernels ${KERNELS})
 list(APPEND fields "  \"kernels\": ${kernels}")
 json_list(sources ${SOURCES})

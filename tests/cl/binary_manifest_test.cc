@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -89,6 +90,19 @@ class BinaryManifestTest : public ::testing::Test {
 };
 rfrecon::testing::TempDir* BinaryManifestTest::flow_ = nullptr;
 nlohmann::json* BinaryManifestTest::flow_manifest_ = nullptr;
+
+// The parameter table writes both the header's macros and the JSON object the host expects in a manifest: they agree.
+TEST(HostKernelParametersTest, AreTheHeadersMacros) {
+  const nlohmann::json parameters = host_kernel_parameters();
+  EXPECT_EQ(parameters.size(), 6u) << parameters.dump();
+  EXPECT_EQ(parameters.at("RF_K"), RF_K);
+  EXPECT_EQ(parameters.at("RF_INTEGRATE_INTERLEAVE"), RF_INTEGRATE_INTERLEAVE);
+  EXPECT_EQ(parameters.at("RF_FUSE_INTERLEAVE"), RF_FUSE_INTERLEAVE);
+  EXPECT_EQ(parameters.at("RF_MAX_ROW_WIDTH"), RF_MAX_ROW_WIDTH);
+  EXPECT_EQ(parameters.at("RF_FRAME_BATCH"), RF_FRAME_BATCH);
+  const std::vector<int> dot_spacings RF_DOT_SPACINGS;
+  EXPECT_EQ(parameters.at("RF_DOT_SPACINGS").get<std::vector<int>>(), dot_spacings);
+}
 
 TEST_F(BinaryManifestTest, RealBinaryOfTheFlowIsAccepted) {
   const auto binary = write(real_manifest());
