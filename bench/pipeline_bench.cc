@@ -156,7 +156,7 @@ const RigSetup& rig_setup() {
 
 // With `storage`, the transport reuses its memory and leaves its own there for the next scan, as a scanner's loop
 // does (compute_transport_on_devices).
-ScanRun run_scan(const capture::FrameSource& frames, bool gray_only, depth::Method method,
+ScanRun run_scan(const capture::FrameSource& frames, bool gray_only, const std::string& method,
                  transport::CompressedTransport* storage = nullptr) {
   const RigSetup& rig = rig_setup();
   ScanRun run;
@@ -235,7 +235,7 @@ void BM_FusedScan(benchmark::State& state) {
   const capture::FrameSource frames = frames_in_memory(false);
   std::vector<ScanRun> runs;
   transport::CompressedTransport storage;
-  for (auto _ : state) runs.push_back(run_scan(frames, false, depth::Method::kFused, &storage));
+  for (auto _ : state) runs.push_back(run_scan(frames, false, "fused", &storage));
   ScanRun run = median_scan(runs);
   for (const auto& [stage, seconds] : run.seconds) state.counters[stage + "_seconds"] = seconds;
   state.counters["pipeline_seconds"] = run.total_seconds;
@@ -256,7 +256,7 @@ void BM_FusedScan(benchmark::State& state) {
 // The same scan from the PNG files, read on transport::kDefaultReaders threads while the devices work.
 void BM_FusedScanFromFiles(benchmark::State& state) {
   std::vector<ScanRun> runs;
-  for (auto _ : state) runs.push_back(run_scan(capture_dir(), false, depth::Method::kFused));
+  for (auto _ : state) runs.push_back(run_scan(capture_dir(), false, "fused"));
   const ScanRun run = median_scan(runs);
   for (const auto& [stage, seconds] : run.seconds) state.counters[stage + "_seconds"] = seconds;
   state.counters["pipeline_with_reading_seconds"] = run.total_seconds;
@@ -268,7 +268,7 @@ void BM_GrayTriangulation(benchmark::State& state) {
   const capture::FrameSource frames = frames_in_memory(true);
   std::vector<ScanRun> runs;
   transport::CompressedTransport storage;
-  for (auto _ : state) runs.push_back(run_scan(frames, true, depth::Method::kTriangulate, &storage));
+  for (auto _ : state) runs.push_back(run_scan(frames, true, "triangulate", &storage));
   ScanRun run = median_scan(runs);
   for (const auto& [stage, seconds] : run.seconds) state.counters[stage + "_seconds"] = seconds;
   state.counters["pipeline_seconds"] = run.total_seconds;
@@ -369,7 +369,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (mode == kScanMode) {
-    run_scan(capture_dir(), false, depth::Method::kFused);
+    run_scan(capture_dir(), false, "fused");
     return 0;
   }
   if (temporary) scan_dir() = fs::temp_directory_path() / ("rfrecon_pipeline_bench_" + std::to_string(getpid()));

@@ -36,9 +36,14 @@ using CalibrationOptions = calib::CalibrationOptions;
 using Manifest = capture::CaptureManifest;         // a capture's patterns, sizes, bit depth (manifest.json)
 using Transport = transport::CompressedTransport;  // T: K strongest entries per camera pixel (T.h5)
 using Thresholds = transport::Thresholds;
-using Method = depth::Method;  // kTriangulate, kIntegrate or kFused
-using depth::parse_method;     // "triangulate", "integrate", "fused"; InputError otherwise
-using ReconstructOptions = depth::DepthOptions;
+using ReconstructOptions = depth::DepthOptions;  // .method: a registered depth method's name, "fused" by default
+// The depth-method seam (docs/architecture.md#extension-points): subclass DepthMethod, register it, and name it in
+// ReconstructOptions.method; depth_method(name) throws InputError listing the names for an unknown one.
+using depth::depth_method;
+using depth::depth_method_names;
+using depth::DepthMethod;
+using depth::MethodScan;
+using depth::register_depth_method;
 // A tuning option of ReconstructOptions by its command-line name ("crease", "sigma-step": docs/cli.md), checked
 // against its documented range (UsageError naming it otherwise); depth_option_table() lists them.
 using depth::depth_option_table;

@@ -1,48 +1,35 @@
 // Platform and device enumeration and per-device context/queue creation.
 #include "host/cl/device_context.h"
 
-#include <algorithm>
 #include <cstddef>
 #include <mutex>
 
 #include <pthread.h>
 
 #include "host/cl/error.h"
-#include "kernels/depth/row_buffers.h"
 
 namespace rfrecon::cl {
 
-namespace {
-
-// The largest private arrays of a kernel: the single work-item depth entries' interleaved rows (on-chip memory on a
-// board).
-constexpr std::size_t kKernelPrivateBytes = std::max<std::size_t>(RF_INTEGRATE_PRIVATE_BYTES, RF_FUSE_PRIVATE_BYTES);
-
-// CPU runtimes (PoCL) run a kernel's private arrays on their worker threads' stacks, which glibc sizes like the main
-// thread's (8 MB by default), and create those threads when the platforms are first queried. Threads created from
-// then on get a default stack that holds the largest kernel's arrays with 8 MB to spare (address space: pages are
-// only committed when touched).
-void reserve_kernel_stacks() {
+bool reserve_private_bytes(std::size_t bytes) noexcept {
 #ifdef __GLIBC__
-  static std::once_flag once;
-  std::call_once(once, [] {
-    constexpr std::size_t kWanted = kKernelPrivateBytes + (std::size_t{8} << 20);
-    pthread_attr_t attributes;
-    if (pthread_getattr_default_np(&attributes) != 0) return;
-    std::size_t size = 0;
-    if (pthread_attr_getstacksize(&attributes, &size) == 0 && size < kWanted &&
-        pthread_attr_setstacksize(&attributes, kWanted) == 0) {
-      pthread_setattr_default_np(&attributes);
-    }
-    pthread_attr_destroy(&attributes);
-  });
+  static std::mutex mutex;
+  const std::scoped_lock lock(mutex);
+  const std::size_t wanted = bytes + (std::size_t{8} << 20);  // address space: pages are committed when touched
+  pthread_attr_t attributes;
+  if (pthread_getattr_default_np(&attributes) != 0) return true;
+  std::size_t size = 0;
+  if (pthread_attr_getstacksize(&attributes, &size) == 0 && size < wanted &&
+      pthread_attr_setstacksize(&attributes, wanted) == 0) {
+    pthread_setattr_default_np(&attributes);
+  }
+  pthread_attr_destroy(&attributes);
+#else
+  (void)bytes;
 #endif
+  return true;
 }
 
-}  // namespace
-
 std::vector<DeviceEntry> enumerate_devices() {
-  reserve_kernel_stacks();
   std::vector<::cl::Platform> platforms;
   const cl_int status = ::cl::Platform::get(&platforms);
   if (status == CL_PLATFORM_NOT_FOUND_KHR || platforms.empty()) return {};

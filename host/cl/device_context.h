@@ -1,6 +1,7 @@
 // One OpenCL device ready for work: its own context and in-order queue (contexts cannot span platforms).
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "host/cl/device_info.h"
@@ -17,6 +18,13 @@ struct DeviceEntry {
 
 // Every device of every platform, in platform order then device order; empty when no ICD is installed.
 std::vector<DeviceEntry> enumerate_devices();
+
+// Declares that a kernel holds `bytes` of private arrays per work-item. CPU runtimes (PoCL) run them on their worker
+// threads' stacks, which they create at the first platform query: threads created from this call on get a default
+// stack that holds the largest declared arrays with 8 MB to spare. The code that launches such a kernel declares it at
+// static initialization (host/depth/row_solvers.cc), so that no runtime or stage needs to know another's kernels.
+// Returns true, for that use.
+bool reserve_private_bytes(std::size_t bytes) noexcept;
 
 class DeviceContext {
  public:

@@ -4,6 +4,7 @@
 #include "host/cl/device_selection.h"
 #include "host/cli/commands.h"
 #include "host/cli/number_checks.h"
+#include "host/depth/depth_method.h"
 #include "host/depth/depth_option_table.h"
 #include "host/pipeline/reconstruct_scan.h"
 
@@ -18,7 +19,7 @@ struct ReconstructOptions {
 
 void run_reconstruct(ReconstructOptions options) {
   auto& request = options.request;
-  request.depth.method = depth::parse_method(options.method);
+  request.depth.method = options.method;
   auto devices = cl::open_devices(options.devices);
   cl::ProgramCache programs;
   const auto run = pipeline::reconstruct_scan(request, devices, programs);
@@ -42,8 +43,12 @@ void add_reconstruct_command(CLI::App& app) {
   command->add_option("--calib", options->request.rig, "Calibrated rig (rig.yaml from `rfrecon calibrate`)")
       ->required();
   command->add_option("-o,--output", options->request.out_dir, "Output directory (docs/formats.md)")->required();
-  command->add_option("--method", options->method, "triangulate, integrate (reciprocity ODE) or fused")
-      ->check(CLI::IsMember({"triangulate", "integrate", "fused"}))
+  std::string methods;
+  for (const auto& name : depth::depth_method_names()) {
+    methods += (methods.empty() ? "" : "; ") + name + ": " + depth::depth_method(name).description();
+  }
+  command->add_option("--method", options->method, "Depth method (" + methods + ")")
+      ->check(CLI::IsMember(depth::depth_method_names()))
       ->capture_default_str();
   command->add_flag("--force", options->request.force, "Replace an existing output directory");
   add_devices_option(command, options->devices);

@@ -1,7 +1,6 @@
-// Orchestration of the depth stage: triangulation, rectification, segmentation, row solvers, back to the camera.
+// The depth stage's driver: triangulation on the camera grid, the chosen method, and back to the camera frame.
 #include "host/depth/reconstruct_depth.h"
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -11,24 +10,19 @@
 #include "host/core/parallel_rows.h"
 #include "host/core/stage_clock.h"
 #include "host/depth/camera_grid.h"
-#include "host/sched/scheduler.h"
-#include "host/transport/spmv.h"
-#include "host/transport/spmv_on_devices.h"
-#include "kernels/common/lanes.h"
+#include "host/depth/pixel_losses.h"
 
 namespace rfrecon::depth {
 
 namespace {
-
-constexpr const char* kMethodNames[] = {"triangulate", "integrate", "fused"};
 
 // Gaussian agreement weight exp(-d^2 / 2 s^2), 0 where d is NaN.
 float agreement(float difference, float sigma) {
   return std::isnan(difference) ? 0.0f : std::exp(-0.5f * (difference / sigma) * (difference / sigma));
 }
 
-// Triangulation: how close the correspondence lies to its rectified row (0.5 px scale). Row solvers: how well the
-// result agrees with the triangulated depth, in units of three times its expected noise.
+// How close the correspondence lies to its rectified row (0.5 px scale), times how well the depth agrees with the
+// triangulated one, in units of three times its expected noise (1 for triangulation itself).
 void fill_confidence(outputs::Reconstruction& maps, const cv::Mat& z_rect_mm,
                      const CameraGridTriangulation& triangulation, const RfRectifiedRig& rig,
                      const DepthOptions& options) {
@@ -37,64 +31,36 @@ void fill_confidence(outputs::Reconstruction& maps, const cv::Mat& z_rect_mm,
     for (int x = 0; x < maps.depth_mm.cols; ++x) {
       const float z = z_rect_mm.at<float>(y, x);
       if (!(z > 0.0f)) continue;
-      float confidence = agreement(triangulation.epipolar_px.at<float>(y, x), 0.5f);
-      if (options.method != Method::kTriangulate) {
-        confidence *= agreement(z - triangulation.z_rect_mm.at<float>(y, x), 3.0f * z * z * depth_noise_scale);
-      }
-      maps.confidence.at<float>(y, x) = confidence;
+      maps.confidence.at<float>(y, x) =
+          agreement(triangulation.epipolar_px.at<float>(y, x), 0.5f) *
+          agreement(z - triangulation.z_rect_mm.at<float>(y, x), 3.0f * z * z * depth_noise_scale);
     }
   });
 }
 
-// Throws before any work: no device, an entry list of the wrong length, a method the capture cannot serve.
-void check_request(const transport::CompressedTransport& transport, const DepthOptions& options,
-                   const std::vector<cl::DeviceContext>& devices) {
+// The method, before any work; throws on no device, an entry list of the wrong length, a method unknown or one the
+// capture cannot serve.
+const DepthMethod& check_request(const transport::CompressedTransport& transport, const DepthOptions& options,
+                                 const std::vector<cl::DeviceContext>& devices) {
   if (devices.empty()) throw std::invalid_argument("reconstruct_depth: no device");
   options.entries.check_device_count(devices.size());
-  if (options.method != Method::kTriangulate && transport.setup.dot_spacing == 0) {
-    throw InputError("the " + method_name(options.method) +
+  const DepthMethod& method = depth_method(options.method);
+  if (method.needs_rows() && transport.setup.dot_spacing == 0) {
+    throw InputError("the " + method.name() +
                      " method needs the dot-grid scan (T's full rows for the primal and dual images), and this "
                      "capture has Gray code only (dot_spacing 0): use --method triangulate, or capture with dots");
   }
-}
-
-// Where the pixels with a correspondence went, each loss with the option that sets it: the text of the warning when
-// fewer than half are reconstructed and of the error when none is.
-std::string where_pixels_went(const nlohmann::json& summary, const CameraGridTriangulation& triangulation,
-                              const DepthOptions& options, const std::string& rig_name) {
-  std::string why = std::to_string(triangulation.off_epipolar) + " off their epipolar line by more than " +
-                    fmt::format("{:g}", options.rectification.epipolar_tolerance_px) + " px (--epipolar-tolerance; " +
-                    "is " + rig_name + " this capture's calibration?), " +
-                    std::to_string(triangulation.boundary_pixels) + " on object boundaries, " +
-                    std::to_string(triangulation.edge_pixels) + " on albedo or shadow edges (--edge-relative)";
-  if (summary.contains("segmentation")) {
-    const auto& segmentation = summary["segmentation"];
-    why += ", " + std::to_string(segmentation["usable_pixels"].get<int>()) +
-           " usable rectified samples for the integration (others lack primal or dual signal, or saturate: "
-           "--saturation), in runs ended by " +
-           std::to_string(segmentation["jumps"].get<int>()) + " depth jumps (--jump) and " +
-           std::to_string(segmentation["creases"].get<int>()) + " creases (--crease)";
-  }
-  return why;
+  return method;
 }
 }  // namespace
-
-std::string method_name(Method method) { return kMethodNames[static_cast<int>(method)]; }
-
-Method parse_method(const std::string& name) {
-  for (int i = 0; i < 3; ++i) {
-    if (name == kMethodNames[i]) return static_cast<Method>(i);
-  }
-  throw InputError("unknown depth method '" + name + "' (triangulate, integrate or fused)");
-}
 
 DepthRun reconstruct_depth(const transport::CompressedTransport& transport, const calib::StereoRig& rig,
                            const std::string& rig_name, const DepthOptions& options,
                            std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
-  check_request(transport, options, devices);
+  const DepthMethod& method = check_request(transport, options, devices);
   StageClock clock;
-  const Rectification rectification = clock.time(
-      "rig geometry", [&] { return depth_rectification(rig, rig_name, options.method != Method::kTriangulate); });
+  const Rectification rectification =
+      clock.time("rig geometry", [&] { return depth_rectification(rig, rig_name, method.needs_rows()); });
   DepthRun run = reconstruct_depth(transport, rig, rectification, rig_name, options, devices, programs);
   nlohmann::json timings = clock.timings();
   for (const auto& timing : run.summary["timings"]) timings.push_back(timing);
@@ -105,10 +71,10 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
 DepthRun reconstruct_depth(const transport::CompressedTransport& transport, const calib::StereoRig& rig,
                            const Rectification& rectification, const std::string& rig_name, const DepthOptions& options,
                            std::vector<cl::DeviceContext>& devices, cl::ProgramCache& programs) {
-  check_request(transport, options, devices);
+  const DepthMethod& method = check_request(transport, options, devices);
   DepthRun run;
   nlohmann::json& summary = run.summary;
-  summary["method"] = method_name(options.method);
+  summary["method"] = method.name();
   summary["camera_size"] = {transport.setup.camera_size.width, transport.setup.camera_size.height};
   summary["projector_size"] = {transport.setup.projector_size.width, transport.setup.projector_size.height};
   StageClock clock;
@@ -134,78 +100,16 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
                           " the calibration of this capture?)");
   }
 
-  cv::Mat z_rect_grid = triangulation.z_rect_mm;
-  if (options.method != Method::kTriangulate) {
-    std::vector<cl::ProgramRequest> requests = {
-        {"transport/spmv.cl", transport::transport_build_options(transport.k())},
-        {"transport/spmv.cl", ""},
-        {"depth/integrate.cl", ""}};
-    if (options.method == Method::kFused) requests.push_back({"depth/fuse.cl", ""});
+  const std::vector<cl::ProgramRequest> requests = method.programs(transport);
+  if (!requests.empty()) {
     cl::prepare_programs(devices, programs, requests);
     clock.lap("build programs");
-    std::vector<sched::RunReport> reports;
-    auto primal = transport::primal_on_devices(devices, programs, options.entries, transport,
-                                               std::vector<float>(transport.projector_pixels(), 1.0f));
-    auto dual = transport::dual_on_devices(devices, programs, options.entries, transport::transpose(transport),
-                                           std::vector<float>(transport.camera_pixels(), 1.0f));
-    reports.push_back(primal.report);
-    reports.push_back(dual.report);
-    clock.lap("primal and dual images");
-    RectifiedRows rows =
-        rectify_rows(transport, primal.image, dual.image, rectification, triangulation, options.rectification);
-    clock.lap("rectify");
-    const SegmentationStats segments = segment_rows(rows, options.segmentation);
-    summary["segmentation"] = {{"usable_pixels", segments.usable},
-                               {"runs", segments.runs},
-                               {"jumps", segments.jumps},
-                               {"creases", segments.creases},
-                               {"ode_breakdowns", segments.ode_breakdowns}};
-    clock.lap("segment");
-    if (segments.usable == 0) {
-      throw ProcessingError("nothing to integrate: every rectified pixel is masked: of the " +
-                            std::to_string(triangulation.correspondences) + " pixels with a correspondence, " +
-                            where_pixels_went(summary, triangulation, options, rig_name));
-    }
-    // Rows are independent: the scheduler cuts them into tiles over the devices; each tile's depths go to its own
-    // rows of z_rect, so the result does not depend on the split.
-    std::vector<float> z_rect(rows.pixels());
-    const auto solve_rows = [&](const std::string& stage, const auto& solve) {
-      sched::Options tiles;
-      tiles.stage = stage;
-      tiles.entries = options.entries;
-      tiles.granularity = RF_LANES;  // an NDRange work-item's rows (kernels/depth/row_lanes.h)
-      reports.push_back(sched::run_tiles(
-          devices, static_cast<std::size_t>(rows.height),
-          [&](sched::Worker& worker, const sched::Tile& tile) {
-            const int first = static_cast<int>(tile.begin), end = static_cast<int>(tile.end);
-            const auto z = solve(worker, first, end);
-            worker.deliver([&] {
-              std::copy(z.begin(), z.end(), z_rect.begin() + static_cast<std::ptrdiff_t>(first) * rows.width);
-            });
-          },
-          tiles));
-      clock.lap(stage);
-    };
-    // The NDRange entries' interleaved rows, made once for every tile of both solvers (timed with the integration).
-    const std::vector<cl::KernelEntry> entries = options.entries.resolve(devices);
-    const bool any_lanes = std::find(entries.begin(), entries.end(), cl::KernelEntry::kNdRange) != entries.end();
-    const LaneRows lanes = any_lanes ? interleave_rows(rows) : LaneRows{};
-    solve_rows("integrate", [&](sched::Worker& worker, int first, int end) {
-      return integrate_rows_opencl(worker.device(), programs, worker.entry(), rows, options.integration, first, end,
-                                   &lanes);
-    });
-    if (options.method == Method::kFused) {
-      const std::vector<float> z_integrated = z_rect;
-      solve_rows("fuse", [&](sched::Worker& worker, int first, int end) {
-        const auto begin = z_integrated.begin() + static_cast<std::ptrdiff_t>(first) * rows.width;
-        const std::vector<float> start(begin, begin + static_cast<std::ptrdiff_t>(end - first) * rows.width);
-        return fuse_rows_opencl(worker.device(), programs, worker.entry(), rows, start, options.fusion, first, end,
-                                &lanes);
-      });
-    }
-    summary["scheduler"] = reports;
-    sched::log_reports(reports);
-    z_rect_grid = sample_rectified_depth(z_rect, rows, triangulation.rect_cam, options.segmentation.jump_relative);
+  }
+  MethodScan scan{transport, rectification, triangulation, options, rig_name, devices, programs, clock, summary};
+  const cv::Mat z_rect_grid = method.solve(scan);
+  if (z_rect_grid.type() != CV_32F || z_rect_grid.size() != triangulation.z_rect_mm.size()) {
+    throw std::logic_error("depth method " + method.name() + " returned depth of another size or type than the " +
+                           "camera's CV_32F grid");
   }
   run.maps = camera_frame_maps(z_rect_grid, triangulation.rect_cam, rectified, rectification.R1);
   fill_confidence(run.maps, z_rect_grid, triangulation, rectified, options);

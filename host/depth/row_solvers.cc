@@ -16,12 +16,19 @@
 #include "host/core/parallel_rows.h"
 #include "kernels/common/lanes.h"
 #include "kernels/common/params.h"
+#include "kernels/depth/row_buffers.h"
 #include "kernels/depth/row_fusion.h"
 #include "kernels/depth/row_integration.h"
 
 namespace rfrecon::depth {
 
 namespace {
+
+// The single work-item entries' interleaved rows are private arrays (on-chip memory on a board): CPU runtimes need
+// worker stacks that hold them, declared before any device is opened.
+constexpr std::size_t kPrivateRowBytes =
+    RF_INTEGRATE_PRIVATE_BYTES > RF_FUSE_PRIVATE_BYTES ? RF_INTEGRATE_PRIVATE_BYTES : RF_FUSE_PRIVATE_BYTES;
+[[maybe_unused]] const bool kPrivateRowsReserved = cl::reserve_private_bytes(kPrivateRowBytes);
 
 void check_range(const RectifiedRows& rows, int row_begin, int row_end) {
   if (row_begin < 0 || row_end > rows.height || row_begin >= row_end) {

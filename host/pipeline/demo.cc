@@ -9,6 +9,7 @@
 #include "calib/camera_from_images.h"
 #include "host/core/atomic_file.h"
 #include "host/core/output_path.h"
+#include "host/depth/depth_method.h"
 #include "host/evaluation/evaluation.h"
 #include "host/pipeline/calibrate_rig.h"
 #include "host/pipeline/reconstruct_scan.h"
@@ -73,21 +74,25 @@ DemoRun run_demo(const fs::path& out_dir, const std::string& rig, bool force, st
 
   const auto truth = evaluation::read_evaluation_truth(cube);
   nlohmann::json table = nlohmann::json::array();
-  for (const auto method : {depth::Method::kTriangulate, depth::Method::kIntegrate, depth::Method::kFused}) {
+  for (const std::string& method : depth::depth_method_names()) {
     ReconstructRequest reconstruct;
     reconstruct.transport = transport.output;
     reconstruct.rig = calibration.output;
     reconstruct.depth.method = method;
-    reconstruct.out_dir = out_dir / depth::method_name(method);
+    reconstruct.out_dir = out_dir / method;
     reconstruct.force = true;
-    spdlog::info("demo: reconstruct ({})", depth::method_name(method));
+    spdlog::info("demo: reconstruct ({})", method);
     const auto run = reconstruct_scan(reconstruct, devices, programs);
     // The maps in memory equal those just written (float32 TIFFs), so the truth is read once and nothing read back.
     const auto e = evaluation::evaluate(run.depth.maps, truth, (reconstruct.out_dir / "depth.tiff").string());
     evaluation::write_evaluation(e, reconstruct.out_dir / "evaluation.json", reconstruct.out_dir / "error_map.png");
     demo.object_size_mm = e.object_size_mm;
-    DemoRow row{depth::method_name(method), e.object.rms_mm,     100.0 * e.object.rms_mm / e.object_size_mm,
-                e.object.mean_abs_mm,       e.object.max_abs_mm, e.object.coverage_percent};
+    DemoRow row{method,
+                e.object.rms_mm,
+                100.0 * e.object.rms_mm / e.object_size_mm,
+                e.object.mean_abs_mm,
+                e.object.max_abs_mm,
+                e.object.coverage_percent};
     demo.methods.push_back(row);
     table.push_back({{"method", row.method},
                      {"rms_mm", row.rms_mm},

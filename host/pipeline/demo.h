@@ -25,7 +25,7 @@ struct DemoRun {
   std::string scene;
   std::string rig;
   double object_size_mm = 0.0;
-  std::vector<DemoRow> methods;  // triangulate, integrate, fused
+  std::vector<DemoRow> methods;  // each registered depth method (depth::depth_method_names())
   double seconds = 0.0;
   std::filesystem::path out_dir;
 };

@@ -37,7 +37,7 @@ ReconstructRun reconstruct_scan(const ReconstructRequest& request, std::vector<c
   check_output_directory({request.out_dir, "--output", request.force}, {request.transport, request.rig});
   const auto transport = transport::read_transport(request.transport);
   const auto rig = calib::read_rig(request.rig);
-  spdlog::info("reconstruct: {} from {} with {}", depth::method_name(request.depth.method), request.transport.string(),
+  spdlog::info("reconstruct: {} from {} with {}", request.depth.method, request.transport.string(),
                request.rig.string());
   auto run = reconstruct_transport(transport, rig, request.rig.string(), request, devices, programs);
   outputs::write_reconstruction(run.depth.maps, run.depth.summary, request.out_dir, request.force);

@@ -51,7 +51,7 @@ nlohmann::json reconstruct_options_json(const ReconstructRequest& request,
   json["transport"] = request.transport.string();
   json["calib"] = request.rig.string();
   json["output"] = request.out_dir.string();
-  json["method"] = depth::method_name(depth.method);
+  json["method"] = depth.method;
   json["devices"] = nlohmann::json::array();
   for (const auto& device : devices) json["devices"].push_back(device.info().device_name);
   json["entry"] = depth.entries.text();

@@ -21,6 +21,7 @@ from ._rfrecon import (  # noqa: F401
     Transport,
     UsageError,
     __version__,
+    depth_methods,
     make_manifest,
     open_camera,
     open_projector,

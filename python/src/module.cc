@@ -88,7 +88,7 @@ auto with_gil(py::function function) {
 // The method and the tuning options by name, underscores for the flags' hyphens (crease, sigma_step).
 rfrecon::ReconstructOptions reconstruct_options(const std::string& method, const py::kwargs& tuning) {
   rfrecon::ReconstructOptions options;
-  options.method = rfrecon::parse_method(method);
+  options.method = rfrecon::depth_method(method).name();
   for (const auto& [key, value] : tuning) {
     std::string name = py::str(key);
     std::replace(name.begin(), name.end(), '_', '-');
@@ -337,6 +337,9 @@ PYBIND11_MODULE(_rfrecon, module) {
         return std::make_shared<rfrecon::Transport>(rfrecon::read_transport(file));
       },
       py::arg("file"), "T.h5 as `rfrecon transport` writes it (docs/formats.md).");
+  module.def(
+      "depth_methods", &rfrecon::depth_method_names,
+      "The depth methods' names, for Session.reconstruct(method=...): the built-ins, then any registered in C++.");
   module.def("write_transport", &rfrecon::write_transport, py::arg("transport"), py::arg("file"),
              py::arg("force") = false, py::call_guard<py::gil_scoped_release>(),
              "T.h5, written atomically; an existing file only with force.");

@@ -76,7 +76,7 @@ class OutputsAsReadTest : public ::testing::Test {
     request.transport = dir / "T.h5";
     request.rig = dir / "rig.yaml";
     request.out_dir = scan_->out();
-    request.depth.method = depth::Method::kTriangulate;
+    request.depth.method = "triangulate";
     std::vector<cl::DeviceContext> devices{rfrecon::testing::first_device()};
     cl::ProgramCache programs;
     pipeline::reconstruct_scan(request, devices, programs);

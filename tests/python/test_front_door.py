@@ -147,8 +147,9 @@ def test_errors_name_what_is_wrong(session, capture, transport, plane, tmp_path)
     with pytest.raises(rfrecon.Error, match="not empty"):
         rfrecon.write_reconstruction(maps, tmp_path / "out")
     assert (tmp_path / "out" / "depth.tiff").read_bytes() == before  # nothing lost
-    with pytest.raises(rfrecon.InputError, match="no-such-method"):
+    with pytest.raises(rfrecon.InputError, match="no-such-method.*" + ", ".join(rfrecon.depth_methods())):
         session.reconstruct(transport, rfrecon.read_rig(plane / "truth" / "rig.yaml"), "no-such-method")
+    assert rfrecon.depth_methods()[:3] == ["triangulate", "integrate", "fused"]
     rig = rfrecon.read_rig(plane / "truth" / "rig.yaml")
     with pytest.raises(rfrecon.UsageError, match="'passes' is 0: a whole number from 1 to 20") as error:
         session.reconstruct(transport, rig, passes=0)

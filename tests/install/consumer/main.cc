@@ -62,7 +62,7 @@ int run(const fs::path& work) {
   const rfrecon::TransportResult transport = session.transport(camera);
   const rfrecon::Rig rig = rfrecon::read_rig(rendering / "truth" / "rig.yaml");
   rfrecon::ReconstructOptions options;
-  options.method = rfrecon::Method::kFused;
+  options.method = "fused";
   const rfrecon::ReconstructResult result = session.reconstruct(transport.transport, rig, options);
   rfrecon::write_reconstruction(result, work / "reconstruction");
 
