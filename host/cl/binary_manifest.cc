@@ -6,6 +6,7 @@
 
 #include "host/cl/kernel_sources.h"
 #include "host/core/errors.h"
+#include "host/core/file_sha256.h"
 #include "host/core/input_file.h"
 #include "host/core/json_file.h"
 #include "host/core/limits.h"
@@ -45,10 +46,12 @@ constexpr FieldType kFields[] = {
     {"tool_version", nlohmann::json::value_t::string, "a string"},
     {"target_macro", nlohmann::json::value_t::string, "a string"},
     {"source_sha256", nlohmann::json::value_t::string, "a string"},
+    {"binary_sha256", nlohmann::json::value_t::string, "a string"},
     {"stand_in", nlohmann::json::value_t::boolean, "true or false"},
     {"parameters", nlohmann::json::value_t::object, "an object"},
     {"kernels", nlohmann::json::value_t::array, "an array of kernel names"},
     {"sources", nlohmann::json::value_t::array, "an array of file names"},
+    {"extra_flags", nlohmann::json::value_t::array, "an array of compiler flags"},
 };
 
 void check_format(const std::filesystem::path& file, const nlohmann::json& manifest) {
@@ -59,7 +62,7 @@ void check_format(const std::filesystem::path& file, const nlohmann::json& manif
     if (it->type() != field.type)
       fail(file, field.name, std::string("expected ") + field.type_name + ", found " + excerpt(it->dump()));
   }
-  for (const char* list : {"kernels", "sources"}) {
+  for (const char* list : {"kernels", "sources", "extra_flags"}) {
     for (const auto& item : manifest[list]) {
       if (!item.is_string()) fail(file, list, "expected an array of strings, found " + excerpt(manifest[list].dump()));
     }
@@ -148,7 +151,10 @@ BinaryManifest check_binary_manifest(const std::filesystem::path& binary, const 
       fail(file, "kernels", "expected " + kernel + " among them (the host runs it), found " + excerpt(kernels.dump()));
     }
   }
-  return {binary, file, parameters};
+  // Last, as it reads the whole binary (hundreds of MB for a board).
+  expect_equal(file, "binary_sha256", file_sha256(binary), manifest["binary_sha256"],
+               "the SHA-256 of " + binary.filename().string() + ": a binary rebuilt or replaced without its manifest?");
+  return {binary, file, parameters, manifest["extra_flags"]};
 }
 
 std::filesystem::path find_board_binary(const std::filesystem::path& location) {

@@ -53,12 +53,13 @@ struct BinaryManifest {
   std::filesystem::path binary;  // the binary it describes
   std::filesystem::path file;    // the manifest, binary + ".json"
   nlohmann::json parameters;     // its `parameters`, equal to the expectation's
+  nlohmann::json extra_flags;    // its `extra_flags`: what the flow added to every compile (RFRECON_FPGA_EXTRA_FLAGS)
 };
 
 // binary's manifest (binary + ".json"), read and checked against `expected`: valid JSON, every field of the format
 // with its type, `binary` naming binary's file, `stand_in` false, then `target_macro` (one of the expected),
-// `parameters`, `source_sha256`
-// and `kernels` (a superset of the expected). Throws BinaryManifestError at the first mismatch. Needs no device.
+// `parameters`, `source_sha256`, `kernels` (a superset of the expected) and `binary_sha256` (the SHA-256 of binary's
+// bytes). Throws BinaryManifestError at the first mismatch. Needs no device.
 BinaryManifest check_binary_manifest(const std::filesystem::path& binary, const ManifestExpectation& expected);
 
 // The board binary at `location`: the file itself, or in a directory the one file that has a manifest beside it

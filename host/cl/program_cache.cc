@@ -103,6 +103,9 @@ const ProgramCache::BoardProgram& ProgramCache::board_program(DeviceContext& dev
   if (const auto it = boards_.find(device.context()()); it != boards_.end()) return it->second;
   const std::filesystem::path binary = find_board_binary(binary_location_);
   BinaryManifest manifest = check_binary_manifest(binary, host_manifest_expectation(device.info()));
+  if (!manifest.extra_flags.empty()) {
+    spdlog::info("kernel binary {} was compiled with the extra flags {}", binary.string(), manifest.extra_flags.dump());
+  }
   ::cl::Program program = build_binary(device, binary);
   return boards_.emplace(device.context()(), BoardProgram{std::move(manifest), std::move(program)}).first->second;
 }

@@ -40,8 +40,18 @@ foreach(target IN ITEMS emulator report hardware)
 endforeach()
 
 # With a real aoc, the emulator binary is a test dependency (tests/fpga/CMakeLists.txt): its target, the binary, and
-# the environment that shows the emulated board to the host (SDK 19.x; later SDKs ignore it).
+# the environment that shows the emulated board to the host (SDK 19.x; later SDKs ignore it) and raises the
+# emulator's private memory to twice the depth kernels' on-chip rows (kernels/depth/row_buffers.h: 17 bytes per pixel
+# of an integration row, 25 of a fusion row), which its default refuses with CL_OUT_OF_RESOURCES (Programming Guide
+# 22.4, 8.8).
 if(NOT fpga_stand_in)
+  math(EXPR integrate_bytes "${RFRECON_INTEGRATE_INTERLEAVE} * ${RFRECON_MAX_ROW_WIDTH} * 17")
+  math(EXPR fuse_bytes "${RFRECON_FUSE_INTERLEAVE} * ${RFRECON_MAX_ROW_WIDTH} * 25")
+  if(fuse_bytes GREATER integrate_bytes)
+    set(integrate_bytes ${fuse_bytes})
+  endif()
+  math(EXPR private_mb "2 * (${integrate_bytes} + 1048575) / 1048576")
   set_property(GLOBAL PROPERTY RFRECON_FPGA_EMULATION rfrecon_fpga_emulator
-               ${fpga_out}/rfrecon_${RFRECON_FPGA_BOARD}_emulator.aocx CL_CONTEXT_EMULATOR_DEVICE_INTELFPGA=1)
+               ${fpga_out}/rfrecon_${RFRECON_FPGA_BOARD}_emulator.aocx CL_CONTEXT_EMULATOR_DEVICE_INTELFPGA=1
+               CL_CONFIG_CPU_FORCE_PRIVATE_MEM_SIZE=${private_mb}MB)
 endif()

@@ -2,7 +2,8 @@
 # tool and version, target, the -D target macro, the parameters (GENERATED_DIR/common/params.json, written with the
 # parameters header by cmake/EmbedKernelsParams.cmake), kernel names, and the SHA-256 of the kernel sources as
 # cmake/EmbedKernelsSources.cmake computes it for the host (SOURCES relative to KERNEL_DIR, the generated parameters
-# header in GENERATED_DIR). KERNELS and SOURCES come comma-separated.
+# header in GENERATED_DIR), the SHA-256 of the binary itself, and the extra compiler flags (EXTRA_FLAGS_FILE, one per
+# line). KERNELS and SOURCES come comma-separated.
 include(${CMAKE_CURRENT_LIST_DIR}/../../cmake/EmbedKernelsSources.cmake)
 if(NOT EXISTS ${BINARY})
   message(FATAL_ERROR "${BINARY} was not written by ${TOOL}")
@@ -27,10 +28,12 @@ function(json_list var)
 endfunction()
 
 get_filename_component(binary_name ${BINARY} NAME)
+file(SHA256 ${BINARY} binary_hash)
+file(STRINGS ${EXTRA_FLAGS_FILE} extra_flags)
 set(fields "")
 foreach(pair IN ITEMS "binary;${binary_name}" "board;${BOARD}" "device;${DEVICE}" "target;${TARGET}"
                       "tool;${TOOL}" "tool_version;${TOOL_VERSION}" "target_macro;${MACRO}"
-                      "source_sha256;${source_hash}")
+                      "source_sha256;${source_hash}" "binary_sha256;${binary_hash}")
   list(GET pair 0 key)
   list(GET pair 1 value)
   json_string(quoted "${value}")
@@ -40,6 +43,8 @@ list(APPEND fields "  \"stand_in\": ${STAND_IN}")
 file(READ ${GENERATED_DIR}/common/params.json parameters)
 string(STRIP "${parameters}" parameters)
 list(APPEND fields "  \"parameters\": ${parameters}")
+json_list(extra_flags ${extra_flags})
+list(APPEND fields "  \"extra_flags\": ${extra_flags}")
 json_list(kernels ${KERNELS})
 list(APPEND fields "  \"kernels\": ${kernels}")
 json_list(sources ${SOURCES})

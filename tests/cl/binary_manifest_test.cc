@@ -54,10 +54,12 @@ class BinaryManifestTest : public ::testing::Test {
     intel_.compiler_available = false;
   }
 
-  // Writes `manifest` beside a binary named after its `binary` field (a placeholder file: nothing loads it here).
+  // Writes `manifest` beside a binary named after its `binary` field: a copy of the flow's (stand-in) binary, which
+  // nothing loads here, so that binary_sha256 holds.
   std::filesystem::path write(const nlohmann::json& manifest, const std::string& text = {}) const {
     const auto binary = temp_.path() / manifest.value("binary", std::string("board.aocx"));
-    std::ofstream(binary) << "binary";
+    std::filesystem::copy_file(flow_->path() / "rfrecon_520n_emulator.aocx", binary,
+                               std::filesystem::copy_options::overwrite_existing);
     std::ofstream(binary.string() + ".json") << (text.empty() ? manifest.dump(2) : text);
     return binary;
   }
@@ -111,6 +113,21 @@ TEST_F(BinaryManifestTest, RealBinaryOfTheFlowIsAccepted) {
   EXPECT_EQ(checked.parameters.at("RF_K"), RF_K);
   EXPECT_EQ(checked.parameters.at("RF_DOT_SPACINGS").size(), static_cast<std::size_t>(RF_DOT_SPACING_COUNT));
   EXPECT_EQ(checked.parameters.at("RF_DOT_SPACINGS").back(), RF_MAX_DOT_SPACING);
+}
+
+// A binary rebuilt or replaced without its manifest: its bytes no longer hash to binary_sha256.
+TEST_F(BinaryManifestTest, BinaryChangedSinceItsManifestIsRefused) {
+  const auto binary = write(real_manifest());
+  std::ofstream(binary, std::ios::app) << "rebuilt";
+  EXPECT_THAT(refusal(binary, "binary_sha256"), HasSubstr("replaced without its manifest"));
+}
+
+// The flow records RFRECON_FPGA_EXTRA_FLAGS in the manifest, one string per flag, and the host reads them back.
+TEST_F(BinaryManifestTest, ExtraFlagsAreRecorded) {
+  EXPECT_EQ(real_manifest().at("extra_flags"), nlohmann::json::array());
+  rfrecon::testing::TempDir other("manifest_flow_flags");
+  const auto manifest = run_flow(other.path(), "\"-DRFRECON_FPGA_EXTRA_FLAGS=-DRF_TEST_A=1;-DRF_TEST_B=1,2\"");
+  EXPECT_EQ(manifest.at("extra_flags"), (nlohmann::json{"-DRF_TEST_A=1", "-DRF_TEST_B=1,2"}));
 }
 
 TEST_F(BinaryManifestTest, StandInOutputIsRefused) {

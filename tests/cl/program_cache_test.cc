@@ -12,6 +12,7 @@
 #include "host/cl/error.h"
 #include "host/cl/kernel_launch.h"
 #include "host/cl/kernel_sources.h"
+#include "host/core/file_sha256.h"
 #include "host/selfcheck/axpy.h"
 #include "kernels/common/params.h"
 #include "tests/common/devices.h"
@@ -197,6 +198,8 @@ TEST(ProgramCacheTest, BoardBinaryServesEveryKernelFileFromOneLoad) {
                                    {"kernels", embedded_kernel_names()},
                                    {"sources", nlohmann::json::array()},
                                    {"source_sha256", expected.source_sha256},
+                                   {"binary_sha256", file_sha256(binary)},
+                                   {"extra_flags", nlohmann::json::array()},
                                    {"stand_in", false}};
   std::ofstream(binary.string() + ".json") << manifest.dump(2);
 

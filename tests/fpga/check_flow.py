@@ -83,7 +83,9 @@ def check_manifest(binary, target, tool, macro, device, board, kernels, source_h
         manifest = json.load(f)
     wanted = {"binary": os.path.basename(binary), "board": board, "device": device, "target": target, "tool": tool,
               "target_macro": macro, "stand_in": True, "source_sha256": source_hash,
-              "parameters": PARAMETERS}
+              "parameters": PARAMETERS, "extra_flags": []}
+    with open(binary, "rb") as f:
+        wanted["binary_sha256"] = hashlib.sha256(f.read()).hexdigest()
     for key, value in wanted.items():
         expect(manifest.get(key) == value, f"{binary}.json: {key} is {manifest.get(key)!r}, expected {value!r}")
     expect(sorted(manifest["kernels"]) == sorted(kernels), f"{binary}.json: kernels {manifest['kernels']}")
