@@ -88,6 +88,7 @@ ManifestExpectation host_manifest_expectation(const DeviceInfo& info) {
   ManifestExpectation expected;
   expected.parameters = host_kernel_parameters();
   expected.source_sha256 = std::string(embedded_kernel_sources_sha256());
+  expected.hls_source_sha256 = std::string(embedded_hls_sources_sha256());
   for (const auto name : embedded_kernel_names()) {
     constexpr std::string_view kSingle = "_single";
     if (name.size() > kSingle.size() && name.substr(name.size() - kSingle.size()) == kSingle) {
@@ -143,8 +144,13 @@ BinaryManifest check_binary_manifest(const std::filesystem::path& binary, const 
            "found " + excerpt(value.dump()) + ", a parameter this host does not know");
     }
   }
-  expect_equal(file, "source_sha256", expected.source_sha256, manifest["source_sha256"],
-               "the host's embedded kernel sources");
+  if (manifest["target_macro"] == "RF_TARGET_HLS") {
+    expect_equal(file, "source_sha256", expected.hls_source_sha256, manifest["source_sha256"],
+                 "the host's embedded kernel sources and the HLS C++ tops of hw/hls it was built with");
+  } else {
+    expect_equal(file, "source_sha256", expected.source_sha256, manifest["source_sha256"],
+                 "the host's embedded kernel sources");
+  }
   const auto& kernels = manifest["kernels"];
   for (const auto& kernel : expected.kernels) {
     if (std::find(kernels.begin(), kernels.end(), kernel) == kernels.end()) {

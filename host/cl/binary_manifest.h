@@ -42,6 +42,7 @@ nlohmann::json host_kernel_parameters();
 struct ManifestExpectation {
   nlohmann::json parameters;         // host_kernel_parameters()
   std::string source_sha256;         // embedded_kernel_sources_sha256()
+  std::string hls_source_sha256;     // embedded_hls_sources_sha256(), for binaries of the HLS C++ tops
   std::vector<std::string> kernels;  // kernels the binary must hold: the embedded single work-item entries
   // target_macro(device), or on AMD/Xilinx boards also RF_TARGET_HLS (an xclbin of the HLS C++ tops of hw/hls/)
   std::vector<std::string> target_macros;

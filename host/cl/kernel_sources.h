@@ -18,6 +18,8 @@ const std::vector<EmbeddedKernelFile>& embedded_kernel_files();
 // SHA-256 of the embedded files as the hw/ flows' manifests record it (`source_sha256`, docs/formats.md),
 // computed by cmake/EmbedKernelsSources.cmake at build time.
 std::string_view embedded_kernel_sources_sha256();
+// The same over the embedded files and the HLS C++ tops of hw/hls/ ("hw/hls/NAME"): an HLS binary's `source_sha256`.
+std::string_view embedded_hls_sources_sha256();
 
 // The names of the kernels the embedded .cl files declare ("axpy_ndrange", "axpy_single", ...).
 const std::vector<std::string_view>& embedded_kernel_names();

@@ -37,6 +37,9 @@ else()
       set(fpga_hls_top_of_${name} ${top})
     endforeach()
   endforeach()
+  # The manifests' sources, and so their source_sha256, include the tops (cmake/EmbedKernelsSources.cmake).
+  rfrecon_hls_files(fpga_hls_sources ${fpga_kernel_dir})
+  list(APPEND fpga_sources ${fpga_hls_sources})
 endif()
 message(STATUS "FPGA ${RFRECON_FPGA_BOARD} (${RFRECON_FPGA_DESCRIPTION}): v++ ${fpga_tool_version} "
                "--platform ${fpga_device}, ${fpga_kernel_kind}${fpga_stand_in_note}")

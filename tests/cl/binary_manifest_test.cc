@@ -196,11 +196,45 @@ TEST_F(BinaryManifestTest, MissingKernelIsRefused) {
 TEST_F(BinaryManifestTest, HlsTopsBinaryIsForAmdBoardsOnly) {
   auto manifest = real_manifest();
   manifest["target_macro"] = "RF_TARGET_HLS";
+  manifest["source_sha256"] = std::string(embedded_hls_sources_sha256());
   const auto binary = write(manifest);
   DeviceInfo xilinx;
   xilinx.xilinx_fpga = true;
   EXPECT_NO_THROW((void)check_binary_manifest(binary, host_manifest_expectation(xilinx)));
   EXPECT_THAT(refusal(binary, "target_macro"), HasSubstr("expected \"RF_TARGET_INTEL_FPGA\""));
+}
+
+// The u250 flow of the HLS C++ tops (a Vitis 2023.1 stand-in) hashes hw/hls with the kernels, as the host does: its
+// manifest is accepted for an AMD board, and the same manifest with the kernels-only hash is refused.
+TEST_F(BinaryManifestTest, HlsBinaryHashCoversTheTops) {
+  rfrecon::testing::TempDir hls("manifest_flow_hls");
+  const std::string source = RFRECON_SOURCE_DIR;
+  const std::string cmake = RFRECON_CMAKE_COMMAND;
+  const std::string log = (hls.path() / "flow.log").string();
+  const std::string flow =
+      "RFRECON_STANDIN_VERSION=2023.1 \"" + cmake + "\" -S \"" + source + "/hw\" -B \"" + hls.path().string() +
+      "\" -DRFRECON_FPGA_BOARD=u250 -DRFRECON_VXX=\"" + source + "/tests/fpga/bin/v++\" -DRFRECON_EMCONFIGUTIL=\"" +
+      source + "/tests/fpga/bin/emconfigutil\" > \"" + log + "\" 2>&1 && RFRECON_STANDIN_VERSION=2023.1 \"" + cmake +
+      "\" --build \"" + hls.path().string() + "\" --target rfrecon_fpga_sw_emu >> \"" + log + "\" 2>&1";
+  ASSERT_EQ(std::system(flow.c_str()), 0) << "the stand-in HLS flow failed; see " << log;
+  const auto binary = hls.path() / "rfrecon_u250_sw_emu.xclbin";
+  std::ifstream in(binary.string() + ".json");
+  auto manifest = nlohmann::json::parse(in);
+  EXPECT_EQ(manifest.at("target_macro"), "RF_TARGET_HLS");
+  manifest["stand_in"] = false;
+  std::ofstream(binary.string() + ".json") << manifest.dump(2);
+  DeviceInfo xilinx;
+  xilinx.xilinx_fpga = true;
+  EXPECT_NO_THROW((void)check_binary_manifest(binary, host_manifest_expectation(xilinx)));
+  manifest["source_sha256"] = std::string(embedded_kernel_sources_sha256());
+  std::ofstream(binary.string() + ".json") << manifest.dump(2);
+  try {
+    (void)check_binary_manifest(binary, host_manifest_expectation(xilinx));
+    ADD_FAILURE() << "an HLS binary accepted with the hash of the kernels alone";
+  } catch (const BinaryManifestError& error) {
+    EXPECT_EQ(error.field(), "source_sha256");
+    EXPECT_THAT(error.what(), HasSubstr("HLS C++ tops"));
+  }
 }
 
 TEST_F(BinaryManifestTest, OtherTargetMacroIsRefused) {

@@ -42,8 +42,9 @@ PARAMS_H = os.path.join("common", "params.h")
 
 
 def kernels_of(kernel_dir, generated_dir):
-    """{relative .cl path: {kernel name: [global buffer argument names]}} and the manifest's source hash: SHA-256 over
-    "path\\n<SHA-256 of the file>\\n" of every .cl and .h file of kernels/ and the generated common/params.h, sorted."""
+    """{relative .cl path: {kernel name: [global buffer argument names]}}, the manifest's source hash: SHA-256 over
+    "path\\n<SHA-256 of the file>\\n" of every .cl and .h file of kernels/ and the generated common/params.h, sorted,
+    and that listing."""
     files, listing = {}, ""
     for d, _, names in os.walk(kernel_dir):
         for name in names:
@@ -58,7 +59,20 @@ def kernels_of(kernel_dir, generated_dir):
     for relative in sorted(sources + [PARAMS_H]):
         with open(os.path.join(generated_dir if relative == PARAMS_H else kernel_dir, relative), "rb") as f:
             listing += f"{relative}\n{hashlib.sha256(f.read()).hexdigest()}\n"
-    return files, hashlib.sha256(listing.encode()).hexdigest()
+    return files, hashlib.sha256(listing.encode()).hexdigest(), listing
+
+
+def hls_source_hash(kernel_listing, root):
+    """An HLS binary's source hash: the kernels' listing and each hw/hls .cpp and .h file as "hw/hls/NAME", sorted."""
+    entries = kernel_listing.splitlines()
+    pairs = [(entries[i], entries[i + 1]) for i in range(0, len(entries), 2)]
+    hls_dir = os.path.join(root, "hw", "hls")
+    for name in os.listdir(hls_dir):
+        if name.endswith((".cpp", ".h")):
+            with open(os.path.join(hls_dir, name), "rb") as f:
+                pairs.append((f"hw/hls/{name}", hashlib.sha256(f.read()).hexdigest()))
+    listing = "".join(f"{path}\n{digest}\n" for path, digest in sorted(pairs))
+    return hashlib.sha256(listing.encode()).hexdigest()
 
 
 def run(command, env, must_pass=True):
@@ -219,7 +233,7 @@ def main():
         run(configure + ["-B", os.path.join(build, "flow")], env)
         generated_dir = os.path.join(build, "flow", "generated", "kernels")
         check_params_header(generated_dir)
-        files, source_hash = kernels_of(os.path.join(args.root, "kernels"), generated_dir)
+        files, source_hash, listing = kernels_of(os.path.join(args.root, "kernels"), generated_dir)
         run([args.cmake, "--build", os.path.join(build, "flow")], env)
         expect(logged(env["RFRECON_STANDIN_LOG"]) == [], "`all` ran a vendor tool: synthesis must never be in all")
         (check_intel if args.board in INTEL else check_xilinx)(args, os.path.join(build, "flow"), env, files,
@@ -229,7 +243,8 @@ def main():
             run(configure + ["-B", os.path.join(build, "hls")], hls_env)
             run([args.cmake, "--build", os.path.join(build, "hls")], hls_env)
             expect(logged(env["RFRECON_STANDIN_LOG"]) == [], "`all` ran a vendor tool: synthesis must never be in all")
-            check_xilinx(args, os.path.join(build, "hls"), hls_env, files, source_hash, hls=True)
+            check_xilinx(args, os.path.join(build, "hls"), hls_env, files, hls_source_hash(listing, args.root),
+                         hls=True)
         unsupported = dict(env, RFRECON_STANDIN_VERSION="23.1.0" if args.board in INTEL else "2019.1")
         refused = run(configure + ["-B", os.path.join(build, "unsupported")], unsupported, must_pass=False)
         expect(refused.returncode != 0 and "supports" in refused.stderr,
