@@ -1,7 +1,7 @@
 // The depth-method seam end to end: `rfrecon_toy_cli` is the CLI's main linked with tests/depth/toy_depth_method.cc,
 // a method registered from outside host/depth. Its `reconstruct --method toy-scale` runs through the whole command
-// (options, summary, outputs) and gives exactly 1.01 times the triangulated depth on the same pixels; the plain CLI
-// does not know the method and says which it knows.
+// (options, summary, outputs) and gives exactly 1.01 times the triangulated depth on the same pixels, on a plane seen
+// by a camera and a projector of different sizes; the plain CLI does not know the method and says which it knows.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -25,7 +25,7 @@ TEST(ToyDepthMethod, RegisteredOutsideTheDepthLayerRunsThroughTheCli) {
   testing::TempDir dir("toy_method");
   const fs::path scene = dir.path() / "scene";
   ASSERT_EQ(
-      run_cli("-q simulate --scene plane-lambert --camera 64x48 --projector 64x48 -o " + scene.string()).exit_code, 0);
+      run_cli("-q simulate --scene plane-lambert --camera 80x64 --projector 64x40 -o " + scene.string()).exit_code, 0);
   ASSERT_EQ(run_cli("-q transport " + (scene / "capture").string() + " -o " + (scene / "T.h5").string()).exit_code, 0);
   const std::string inputs = (scene / "T.h5").string() + " --calib " + (scene / "truth" / "rig.yaml").string() + " -o ";
 

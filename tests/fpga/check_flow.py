@@ -41,11 +41,20 @@ PARAMETERS = {"RF_K": 8, "RF_INTEGRATE_INTERLEAVE": 160, "RF_FUSE_INTERLEAVE": 3
 PARAMS_H = os.path.join("common", "params.h")
 
 
+def file_digest(path):
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
+
+
+def listing_hash(digests):
+    """A manifest's source hash: SHA-256 over "path\\n<SHA-256 of the file>\\n" of each (path, digest), sorted."""
+    return hashlib.sha256("".join(f"{path}\n{digest}\n" for path, digest in sorted(digests)).encode()).hexdigest()
+
+
 def kernels_of(kernel_dir, generated_dir):
-    """{relative .cl path: {kernel name: [global buffer argument names]}}, the manifest's source hash: SHA-256 over
-    "path\\n<SHA-256 of the file>\\n" of every .cl and .h file of kernels/ and the generated common/params.h, sorted,
-    and that listing."""
-    files, listing = {}, ""
+    """{relative .cl path: {kernel name: [global buffer argument names]}}, and the (path, SHA-256) of every .cl and .h
+    file of kernels/ and of the generated common/params.h, which an OpenCL binary's source hash covers."""
+    files = {}
     for d, _, names in os.walk(kernel_dir):
         for name in names:
             path = os.path.join(d, name)
@@ -56,23 +65,16 @@ def kernels_of(kernel_dir, generated_dir):
                                               if "__global" in a] for m in KERNEL.finditer(f.read())}
     sources = [os.path.relpath(os.path.join(d, n), kernel_dir) for d, _, names in os.walk(kernel_dir)
                for n in names if n.endswith((".cl", ".h"))]
-    for relative in sorted(sources + [PARAMS_H]):
-        with open(os.path.join(generated_dir if relative == PARAMS_H else kernel_dir, relative), "rb") as f:
-            listing += f"{relative}\n{hashlib.sha256(f.read()).hexdigest()}\n"
-    return files, hashlib.sha256(listing.encode()).hexdigest(), listing
+    digests = [(relative, file_digest(os.path.join(generated_dir if relative == PARAMS_H else kernel_dir, relative)))
+               for relative in sources + [PARAMS_H]]
+    return files, digests
 
 
-def hls_source_hash(kernel_listing, root):
-    """An HLS binary's source hash: the kernels' listing and each hw/hls .cpp and .h file as "hw/hls/NAME", sorted."""
-    entries = kernel_listing.splitlines()
-    pairs = [(entries[i], entries[i + 1]) for i in range(0, len(entries), 2)]
+def hls_digests(root):
+    """The (hw/hls/NAME, SHA-256) of each .cpp and .h file of the HLS C++ tops, which an HLS binary's hash adds."""
     hls_dir = os.path.join(root, "hw", "hls")
-    for name in os.listdir(hls_dir):
-        if name.endswith((".cpp", ".h")):
-            with open(os.path.join(hls_dir, name), "rb") as f:
-                pairs.append((f"hw/hls/{name}", hashlib.sha256(f.read()).hexdigest()))
-    listing = "".join(f"{path}\n{digest}\n" for path, digest in sorted(pairs))
-    return hashlib.sha256(listing.encode()).hexdigest()
+    return [(f"hw/hls/{name}", file_digest(os.path.join(hls_dir, name))) for name in os.listdir(hls_dir)
+            if name.endswith((".cpp", ".h"))]
 
 
 def run(command, env, must_pass=True):
@@ -98,8 +100,7 @@ def check_manifest(binary, target, tool, macro, device, board, kernels, source_h
     wanted = {"binary": os.path.basename(binary), "board": board, "device": device, "target": target, "tool": tool,
               "target_macro": macro, "stand_in": True, "source_sha256": source_hash,
               "parameters": PARAMETERS, "extra_flags": []}
-    with open(binary, "rb") as f:
-        wanted["binary_sha256"] = hashlib.sha256(f.read()).hexdigest()
+    wanted["binary_sha256"] = file_digest(binary)
     for key, value in wanted.items():
         expect(manifest.get(key) == value, f"{binary}.json: {key} is {manifest.get(key)!r}, expected {value!r}")
     expect(sorted(manifest["kernels"]) == sorted(kernels), f"{binary}.json: kernels {manifest['kernels']}")
@@ -233,18 +234,18 @@ def main():
         run(configure + ["-B", os.path.join(build, "flow")], env)
         generated_dir = os.path.join(build, "flow", "generated", "kernels")
         check_params_header(generated_dir)
-        files, source_hash, listing = kernels_of(os.path.join(args.root, "kernels"), generated_dir)
+        files, digests = kernels_of(os.path.join(args.root, "kernels"), generated_dir)
         run([args.cmake, "--build", os.path.join(build, "flow")], env)
         expect(logged(env["RFRECON_STANDIN_LOG"]) == [], "`all` ran a vendor tool: synthesis must never be in all")
         (check_intel if args.board in INTEL else check_xilinx)(args, os.path.join(build, "flow"), env, files,
-                                                              source_hash)
+                                                              listing_hash(digests))
         if args.board in XILINX:  # Vitis 2023.1 and later: the HLS C++ tops
             hls_env = dict(env, RFRECON_STANDIN_VERSION="2023.1")
             run(configure + ["-B", os.path.join(build, "hls")], hls_env)
             run([args.cmake, "--build", os.path.join(build, "hls")], hls_env)
             expect(logged(env["RFRECON_STANDIN_LOG"]) == [], "`all` ran a vendor tool: synthesis must never be in all")
-            check_xilinx(args, os.path.join(build, "hls"), hls_env, files, hls_source_hash(listing, args.root),
-                         hls=True)
+            check_xilinx(args, os.path.join(build, "hls"), hls_env, files,
+                         listing_hash(digests + hls_digests(args.root)), hls=True)
         unsupported = dict(env, RFRECON_STANDIN_VERSION="23.1.0" if args.board in INTEL else "2019.1")
         refused = run(configure + ["-B", os.path.join(build, "unsupported")], unsupported, must_pass=False)
         expect(refused.returncode != 0 and "supports" in refused.stderr,
