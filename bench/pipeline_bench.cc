@@ -303,7 +303,7 @@ void BM_GrayTriangulationOpenCV(benchmark::State& state) {
   const std::vector<cv::Mat> patterns(frames.begin() + 2, frames.end());
   const cv::Mat P_cam = cv::Mat::eye(3, 4, CV_64F);
   cv::Mat P_proj(3, 4, CV_64F);
-  cv::hconcat(rig.R, rig.T, P_proj);
+  cv::hconcat(rig.proj_from_cam_rotation, rig.proj_from_cam_translation_mm, P_proj);
   std::size_t points = 0;
   std::vector<double> decode_seconds, pipeline_seconds;
   for (auto _ : state) {

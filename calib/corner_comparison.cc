@@ -124,8 +124,9 @@ CornerComparison compare_corners(const std::vector<ViewCorners>& views, const St
   for (const auto& view : views) {
     camera.add(view.camera_px,
                project(view.true_corners_cam_mm, identity, zero, truth.camera_matrix, truth.dist_coeffs));
-    projector.add(view.projector_px, project(view.true_corners_cam_mm, truth.R, truth.T, truth.projector_matrix,
-                                             truth.projector_dist_coeffs));
+    projector.add(view.projector_px,
+                  project(view.true_corners_cam_mm, truth.proj_from_cam_rotation, truth.proj_from_cam_translation_mm,
+                          truth.projector_matrix, truth.projector_dist_coeffs));
   }
   return {camera.errors(), projector.errors()};
 }

@@ -79,20 +79,23 @@ void JointProblem::view_errors(const std::vector<double>& p, int view, std::vect
 void JointProblem::view_residuals(const std::vector<double>& p, int view, const std::vector<cv::Point2d>& rays,
                                   bool weighted, std::vector<double>& out) const {
   const int pose = layout_.pose(view);
-  const cv::Vec3d rvec(p[pose], p[pose + 1], p[pose + 2]);
-  const cv::Vec3d tvec(p[pose + 3], p[pose + 4], p[pose + 5]);
+  const cv::Vec3d cam_from_board_rvec(p[pose], p[pose + 1], p[pose + 2]);
+  const cv::Vec3d cam_from_board_tvec(p[pose + 3], p[pose + 4], p[pose + 5]);
   const cv::Matx33d proj_from_cam = rotation(p, layout_.om());
   const cv::Matx33d cam_from_board = rotation(p, pose);
-  cv::Vec3d proj_rvec;
-  cv::Rodrigues(proj_from_cam * cam_from_board, proj_rvec);
-  const cv::Vec3d proj_tvec = proj_from_cam * tvec + cv::Vec3d(p[layout_.t()], p[layout_.t() + 1], p[layout_.t() + 2]);
+  cv::Vec3d proj_from_board_rvec;
+  cv::Rodrigues(proj_from_cam * cam_from_board, proj_from_board_rvec);
+  const cv::Vec3d proj_from_board_tvec =
+      proj_from_cam * cam_from_board_tvec + cv::Vec3d(p[layout_.t()], p[layout_.t() + 1], p[layout_.t() + 2]);
   const cv::Mat camera_dist = device_dist(p, 0, layout_.dist_size);
   const cv::Matx33d projector_matrix = device_matrix(p, layout_.device_block());
   const cv::Mat projector_dist = device_dist(p, layout_.device_block(), layout_.dist_size);
   std::vector<cv::Point2d> camera_px;
   std::vector<cv::Point2d> projector_px;
-  cv::projectPoints(object_points_[view], rvec, tvec, device_matrix(p, 0), camera_dist, camera_px);
-  cv::projectPoints(object_points_[view], proj_rvec, proj_tvec, projector_matrix, projector_dist, projector_px);
+  cv::projectPoints(object_points_[view], cam_from_board_rvec, cam_from_board_tvec, device_matrix(p, 0), camera_dist,
+                    camera_px);
+  cv::projectPoints(object_points_[view], proj_from_board_rvec, proj_from_board_tvec, projector_matrix, projector_dist,
+                    projector_px);
   const StereoCorners& observed = corners_[view];
   out.clear();
   const auto append = [&](const std::vector<cv::Point2d>& predicted, const std::vector<cv::Point2f>& measured,
@@ -110,16 +113,18 @@ void JointProblem::view_residuals(const std::vector<double>& p, int view, const 
   // Each dense camera pixel's ray meets the board's plane z = 0 at a board point, which the projector sees like a
   // corner.
   const cv::Vec3d normal(cam_from_board(0, 2), cam_from_board(1, 2), cam_from_board(2, 2));
-  const double distance = normal.dot(tvec);
+  const double distance = normal.dot(cam_from_board_tvec);
   std::vector<cv::Point3d> board_points;
   board_points.reserve(rays.size());
   for (const auto& ray : rays) {
     const cv::Vec3d direction(ray.x, ray.y, 1.0);
-    const cv::Vec3d on_board = cam_from_board.t() * (direction * (distance / normal.dot(direction)) - tvec);
+    const cv::Vec3d on_board =
+        cam_from_board.t() * (direction * (distance / normal.dot(direction)) - cam_from_board_tvec);
     board_points.emplace_back(on_board[0], on_board[1], on_board[2]);
   }
   std::vector<cv::Point2d> dense_px;
-  cv::projectPoints(board_points, proj_rvec, proj_tvec, projector_matrix, projector_dist, dense_px);
+  cv::projectPoints(board_points, proj_from_board_rvec, proj_from_board_tvec, projector_matrix, projector_dist,
+                    dense_px);
   append(dense_px, observed.dense_projector, observed.dense_weights);
 }
 

@@ -63,9 +63,9 @@ RowRectification rectify_rig(const StereoRig& rig) {
        {std::pair{rig.camera_matrix, "camera_matrix"}, {rig.projector_matrix, "projector_matrix"}}) {
     if (!(K.at<double>(0, 0) > 0.0 && K.at<double>(1, 1) > 0.0)) fail(key, "focal lengths must be positive");
   }
-  const cv::Matx33d R(rig.R);
-  const cv::Vec3d T(rig.T);
-  const cv::Vec3d projector_centre = -(R.t() * T);  // camera frame
+  const cv::Matx33d proj_from_cam(rig.proj_from_cam_rotation);
+  const cv::Vec3d proj_from_cam_t_mm(rig.proj_from_cam_translation_mm);
+  const cv::Vec3d projector_centre = -(proj_from_cam.t() * proj_from_cam_t_mm);  // camera frame
   const double baseline = cv::norm(projector_centre);
   if (!(baseline >= kMinBaselineMm)) {
     fail("T", "the baseline is " + std::to_string(baseline) +
@@ -73,8 +73,8 @@ RowRectification rectify_rig(const StereoRig& rig) {
                   "centres coincide)");
   }
   const cv::Vec3d e1 = projector_centre / baseline;
-  const cv::Vec3d mean_axis = cv::normalize(cv::Vec3d(0, 0, 1) + R.t() * cv::Vec3d(0, 0, 1));
-  if (cv::norm(mean_axis) == 0.0 || (R.t() * cv::Vec3d(0, 0, 1))[2] <= 0.0) {
+  const cv::Vec3d mean_axis = cv::normalize(cv::Vec3d(0, 0, 1) + proj_from_cam.t() * cv::Vec3d(0, 0, 1));
+  if (cv::norm(mean_axis) == 0.0 || (proj_from_cam.t() * cv::Vec3d(0, 0, 1))[2] <= 0.0) {
     fail("R", "the projector faces away from the camera's viewing direction");
   }
   const cv::Vec3d across = mean_axis.cross(e1);
@@ -84,7 +84,7 @@ RowRectification rectify_rig(const StereoRig& rig) {
   const cv::Vec3d e2 = cv::normalize(across), e3 = e1.cross(e2);
   RowRectification out;
   out.rect_from_cam = cv::Matx33d(e1[0], e1[1], e1[2], e2[0], e2[1], e2[2], e3[0], e3[1], e3[2]);
-  out.rect_from_proj = out.rect_from_cam * R.t();
+  out.rect_from_proj = out.rect_from_cam * proj_from_cam.t();
   out.baseline_mm = baseline;
   out.f_px = std::max(largest_focal(rig.camera_matrix), largest_focal(rig.projector_matrix));
 
@@ -110,10 +110,11 @@ RowRectification rectify_rig(const StereoRig& rig) {
                      static_cast<int>(std::ceil(camera_box.br().y) + out.cy_px) + 1};
   out.projector_size = {static_cast<int>(std::ceil(projector_box.br().x) + out.cx_proj_px) + 1, out.camera_size.height};
   const double f = out.f_px, b = out.baseline_mm;
-  out.P1 = (cv::Mat_<double>(3, 4) << f, 0, out.cx_cam_px, 0, 0, f, out.cy_px, 0, 0, 0, 1, 0);
-  out.P2 = (cv::Mat_<double>(3, 4) << f, 0, out.cx_proj_px, -f * b, 0, f, out.cy_px, 0, 0, 0, 1, 0);
-  out.Q = (cv::Mat_<double>(4, 4) << 1, 0, 0, -out.cx_cam_px, 0, 1, 0, -out.cy_px, 0, 0, 0, f, 0, 0, 1.0 / b,
-           -(out.cx_cam_px - out.cx_proj_px) / b);
+  out.rect_cam_image_from_rect = (cv::Mat_<double>(3, 4) << f, 0, out.cx_cam_px, 0, 0, f, out.cy_px, 0, 0, 0, 1, 0);
+  out.rect_proj_image_from_rect =
+      (cv::Mat_<double>(3, 4) << f, 0, out.cx_proj_px, -f * b, 0, f, out.cy_px, 0, 0, 0, 1, 0);
+  out.rect_from_disparity = (cv::Mat_<double>(4, 4) << 1, 0, 0, -out.cx_cam_px, 0, 1, 0, -out.cy_px, 0, 0, 0, f, 0, 0,
+                             1.0 / b, -(out.cx_cam_px - out.cx_proj_px) / b);
   return out;
 }
 

@@ -14,17 +14,18 @@ namespace rfrecon::calib {
 // rectified camera pixel (u, v) projects to the projector's rectified row v. Image coordinates have pixel centres at
 // integers; the rectified images hold every pixel of their device (nothing is cropped).
 struct RowRectification {
-  cv::Matx33d rect_from_cam;   // R1: X_rect = R1 X_cam
-  cv::Matx33d rect_from_proj;  // R2: X_rect_proj = R2 X_proj = X_rect - (baseline_mm, 0, 0)
-  double f_px = 0.0;           // rectified focal length: the largest focal length of either device
-  double cx_cam_px = 0.0;      // rectified principal point x of the camera
-  double cx_proj_px = 0.0;     // rectified principal point x of the projector
-  double cy_px = 0.0;          // rectified principal point y (shared: rows line up)
-  double baseline_mm = 0.0;    // |T| > 0: the projector centre is at (baseline_mm, 0, 0) of the rectified frame
-  cv::Size camera_size;        // rectified camera image holding every camera pixel
-  cv::Size projector_size;     // rectified projector image: the camera's rows, every projector column
-  cv::Mat P1, P2;              // 3x4 CV_64F: [f 0 cx_cam 0; 0 f cy 0; 0 0 1 0], [f 0 cx_proj -f b; 0 f cy 0; ...]
-  cv::Mat Q;                   // 4x4 CV_64F disparity-to-depth matrix (cv::reprojectImageTo3D)
+  cv::Matx33d rect_from_cam;          // R1: X_rect = R1 X_cam
+  cv::Matx33d rect_from_proj;         // R2: X_rect_proj = R2 X_proj = X_rect - (baseline_mm, 0, 0)
+  double f_px = 0.0;                  // rectified focal length: the largest focal length of either device
+  double cx_cam_px = 0.0;             // rectified principal point x of the camera
+  double cx_proj_px = 0.0;            // rectified principal point x of the projector
+  double cy_px = 0.0;                 // rectified principal point y (shared: rows line up)
+  double baseline_mm = 0.0;           // |T| > 0: the projector centre is at (baseline_mm, 0, 0) of the rectified frame
+  cv::Size camera_size;               // rectified camera image holding every camera pixel
+  cv::Size projector_size;            // rectified projector image: the camera's rows, every projector column
+  cv::Mat rect_cam_image_from_rect;   // P1: 3x4 CV_64F, [f 0 cx_cam 0; 0 f cy 0; 0 0 1 0]
+  cv::Mat rect_proj_image_from_rect;  // P2: 3x4 CV_64F, [f 0 cx_proj -f b; 0 f cy 0; 0 0 1 0]
+  cv::Mat rect_from_disparity;        // Q: 4x4 CV_64F, disparity to depth (cv::reprojectImageTo3D)
 };
 
 // Undistortion to tight tolerance for cv::undistortPoints: its default 5 iterations leave ~1e-3 px at the corners of

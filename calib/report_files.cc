@@ -80,7 +80,7 @@ json stereo_report_json(const StereoCalibration& calibration) {
                      {"projector_corners_dropped", dropped_count(calibration.projector_dropped, i)}});
   }
   cv::Vec3d om;
-  cv::Rodrigues(rig.R, om);
+  cv::Rodrigues(rig.proj_from_cam_rotation, om);
   return {{"rms_px", rig.rms},
           {"rms_all_corners_px", calibration.rms_all_px},
           {"gating", gating_json(calibration.gating_thresholds, calibration.gating)},
@@ -89,10 +89,10 @@ json stereo_report_json(const StereoCalibration& calibration) {
           {"projector", intrinsics_json(rig.projector_matrix, rig.projector_dist_coeffs, u.projector_intrinsics,
                                         u.projector_dist_coeffs)},
           {"om", {om[0], om[1], om[2]}},
-          {"om_std", values(u.om)},
-          {"T_mm", values(rig.T)},
-          {"T_std_mm", values(u.T)},
-          {"baseline_mm", cv::norm(rig.T)},
+          {"om_std", values(u.proj_from_cam_rotation_vector)},
+          {"T_mm", values(rig.proj_from_cam_translation_mm)},
+          {"T_std_mm", values(u.proj_from_cam_translation_mm)},
+          {"baseline_mm", cv::norm(rig.proj_from_cam_translation_mm)},
           {"views", views},
           {"tilt_spread_deg", calibration.camera.tilt_spread_deg},
           {"coverage", {{"camera", calibration.camera.coverage}, {"projector", calibration.projector.coverage}}},

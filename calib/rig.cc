@@ -48,19 +48,20 @@ void check_measured(const StereoRig& rig, const std::string& file) {
   check_dist(rig.dist_coeffs, "dist_coeffs", file);
   check_shape(rig.projector_matrix, 3, 3, "projector_matrix", file);
   check_dist(rig.projector_dist_coeffs, "projector_dist_coeffs", file);
-  check_shape(rig.R, 3, 3, "R", file);
-  check_shape(rig.T, 3, 1, "T", file);
+  check_shape(rig.proj_from_cam_rotation, 3, 3, "R", file);
+  check_shape(rig.proj_from_cam_translation_mm, 3, 1, "T", file);
   for (const auto& [m, key] : {std::pair{&rig.camera_matrix, "camera_matrix"},
                                {&rig.dist_coeffs, "dist_coeffs"},
                                {&rig.projector_matrix, "projector_matrix"},
                                {&rig.projector_dist_coeffs, "projector_dist_coeffs"},
-                               {&rig.R, "R"},
-                               {&rig.T, "T"}}) {
+                               {&rig.proj_from_cam_rotation, "R"},
+                               {&rig.proj_from_cam_translation_mm, "T"}}) {
     check_finite(*m, key, file);
   }
-  const cv::Mat should_be_identity = rig.R.t() * rig.R;
+  const cv::Mat should_be_identity = rig.proj_from_cam_rotation.t() * rig.proj_from_cam_rotation;
   // 1e-4: R typed in with five decimals (from another toolbox's report) still reads.
-  if (cv::norm(should_be_identity, cv::Mat::eye(3, 3, CV_64F), cv::NORM_INF) > 1e-4 || cv::determinant(rig.R) < 0.0) {
+  if (cv::norm(should_be_identity, cv::Mat::eye(3, 3, CV_64F), cv::NORM_INF) > 1e-4 ||
+      cv::determinant(rig.proj_from_cam_rotation) < 0.0) {
     throw InputError(file + ": key 'R' is not a rotation matrix (orthonormal, determinant +1)");
   }
 }
@@ -68,13 +69,13 @@ void check_measured(const StereoRig& rig, const std::string& file) {
 // Checks every matrix of the rig.
 void check_rig(const StereoRig& rig, const std::string& file) {
   check_measured(rig, file);
-  check_shape(rig.E, 3, 3, "E", file);
-  check_shape(rig.F, 3, 3, "F", file);
-  check_shape(rig.R1, 3, 3, "R1", file);
-  check_shape(rig.R2, 3, 3, "R2", file);
-  check_shape(rig.P1, 3, 4, "P1", file);
-  check_shape(rig.P2, 3, 4, "P2", file);
-  check_shape(rig.Q, 4, 4, "Q", file);
+  check_shape(rig.essential, 3, 3, "E", file);
+  check_shape(rig.fundamental, 3, 3, "F", file);
+  check_shape(rig.rect_from_cam, 3, 3, "R1", file);
+  check_shape(rig.rect_from_proj, 3, 3, "R2", file);
+  check_shape(rig.rect_cam_image_from_rect, 3, 4, "P1", file);
+  check_shape(rig.rect_proj_image_from_rect, 3, 4, "P2", file);
+  check_shape(rig.rect_from_disparity, 4, 4, "Q", file);
 }
 
 cv::Mat as_double(const cv::Mat& m) {
@@ -118,23 +119,24 @@ cv::Size read_size(const cv::FileStorage& fs, const char* key, const std::string
 }  // namespace
 
 void compute_stereo_geometry(StereoRig& rig) {
-  for (cv::Mat* m :
-       {&rig.camera_matrix, &rig.dist_coeffs, &rig.projector_matrix, &rig.projector_dist_coeffs, &rig.R, &rig.T}) {
+  for (cv::Mat* m : {&rig.camera_matrix, &rig.dist_coeffs, &rig.projector_matrix, &rig.projector_dist_coeffs,
+                     &rig.proj_from_cam_rotation, &rig.proj_from_cam_translation_mm}) {
     *m = as_double(*m);
   }
   check_measured(rig, "stereo rig");
-  const cv::Mat t = rig.T;
+  const cv::Mat t = rig.proj_from_cam_translation_mm;
   const cv::Mat t_cross = (cv::Mat_<double>(3, 3) << 0, -t.at<double>(2), t.at<double>(1), t.at<double>(2), 0,
                            -t.at<double>(0), -t.at<double>(1), t.at<double>(0), 0);
-  rig.E = t_cross * as_double(rig.R);
-  rig.F = as_double(rig.projector_matrix).inv().t() * rig.E * as_double(rig.camera_matrix).inv();
-  if (std::abs(rig.F.at<double>(2, 2)) > 1e-12 * cv::norm(rig.F)) rig.F /= rig.F.at<double>(2, 2);
+  rig.essential = t_cross * as_double(rig.proj_from_cam_rotation);
+  rig.fundamental = as_double(rig.projector_matrix).inv().t() * rig.essential * as_double(rig.camera_matrix).inv();
+  if (std::abs(rig.fundamental.at<double>(2, 2)) > 1e-12 * cv::norm(rig.fundamental))
+    rig.fundamental /= rig.fundamental.at<double>(2, 2);
   const RowRectification rectification = rectify_rig(rig);
-  rig.R1 = cv::Mat(rectification.rect_from_cam).clone();
-  rig.R2 = cv::Mat(rectification.rect_from_proj).clone();
-  rig.P1 = rectification.P1;
-  rig.P2 = rectification.P2;
-  rig.Q = rectification.Q;
+  rig.rect_from_cam = cv::Mat(rectification.rect_from_cam).clone();
+  rig.rect_from_proj = cv::Mat(rectification.rect_from_proj).clone();
+  rig.rect_cam_image_from_rect = rectification.rect_cam_image_from_rect;
+  rig.rect_proj_image_from_rect = rectification.rect_proj_image_from_rect;
+  rig.rect_from_disparity = rectification.rect_from_disparity;
   rig.rectified_camera_size = rectification.camera_size;
   rig.rectified_projector_size = rectification.projector_size;
 }
@@ -147,9 +149,11 @@ void write_rig(const StereoRig& rig, const fs::path& file) {
   fs << "camera_matrix" << as_double(rig.camera_matrix) << "dist_coeffs" << as_double(rig.dist_coeffs).reshape(1, 1);
   fs << "projector_matrix" << as_double(rig.projector_matrix) << "projector_dist_coeffs"
      << as_double(rig.projector_dist_coeffs).reshape(1, 1);
-  fs << "R" << as_double(rig.R) << "T" << as_double(rig.T) << "E" << as_double(rig.E) << "F" << as_double(rig.F);
-  fs << "R1" << as_double(rig.R1) << "R2" << as_double(rig.R2) << "P1" << as_double(rig.P1) << "P2" << as_double(rig.P2)
-     << "Q" << as_double(rig.Q);
+  fs << "R" << as_double(rig.proj_from_cam_rotation) << "T" << as_double(rig.proj_from_cam_translation_mm) << "E"
+     << as_double(rig.essential) << "F" << as_double(rig.fundamental);
+  fs << "R1" << as_double(rig.rect_from_cam) << "R2" << as_double(rig.rect_from_proj) << "P1"
+     << as_double(rig.rect_cam_image_from_rect) << "P2" << as_double(rig.rect_proj_image_from_rect) << "Q"
+     << as_double(rig.rect_from_disparity);
   fs << "rectified_camera_size" << rig.rectified_camera_size << "rectified_projector_size"
      << rig.rectified_projector_size;
   fs << "rms" << rig.rms << "per_view_errors" << rig.per_view_errors;
@@ -158,7 +162,7 @@ void write_rig(const StereoRig& rig, const fs::path& file) {
     fs << "camera_intrinsics_std" << u.camera_intrinsics << "dist_coeffs_std" << u.camera_dist_coeffs;
     fs << "projector_intrinsics_std" << u.projector_intrinsics << "projector_dist_coeffs_std"
        << u.projector_dist_coeffs;
-    fs << "om_std" << u.om << "T_std" << u.T;
+    fs << "om_std" << u.proj_from_cam_rotation_vector << "T_std" << u.proj_from_cam_translation_mm;
   }
   fs << "board"
      << "{"
@@ -187,8 +191,8 @@ StereoRig read_rig_file(const fs::path& file) {
   rig.dist_coeffs = read_mat(fs, "dist_coeffs", name);
   rig.projector_matrix = read_mat(fs, "projector_matrix", name);
   rig.projector_dist_coeffs = read_mat(fs, "projector_dist_coeffs", name);
-  rig.R = read_mat(fs, "R", name);
-  rig.T = read_mat(fs, "T", name);
+  rig.proj_from_cam_rotation = read_mat(fs, "R", name);
+  rig.proj_from_cam_translation_mm = read_mat(fs, "T", name);
   if (fs["rms"].empty()) throw InputError(name + ": missing key 'rms'");
   rig.rms = static_cast<double>(fs["rms"]);
   if (!fs["per_view_errors"].empty()) fs["per_view_errors"] >> rig.per_view_errors;
@@ -198,8 +202,8 @@ StereoRig read_rig_file(const fs::path& file) {
                                        {&u.camera_dist_coeffs, "dist_coeffs_std", 0},
                                        {&u.projector_intrinsics, "projector_intrinsics_std", 4},
                                        {&u.projector_dist_coeffs, "projector_dist_coeffs_std", 0},
-                                       {&u.om, "om_std", 3},
-                                       {&u.T, "T_std", 3}}) {
+                                       {&u.proj_from_cam_rotation_vector, "om_std", 3},
+                                       {&u.proj_from_cam_translation_mm, "T_std", 3}}) {
       *m = read_mat(fs, key, name);
       if (cols > 0) check_shape(*m, 1, cols, key, name);
     }

@@ -37,9 +37,10 @@ RigComparison compare_rigs(const StereoRig& estimated, const StereoRig& truth, d
   c.camera_principal_error_px = principal_error(estimated.camera_matrix, truth.camera_matrix);
   c.projector_focal_error = focal_error(estimated.projector_matrix, truth.projector_matrix);
   c.projector_principal_error_px = principal_error(estimated.projector_matrix, truth.projector_matrix);
-  c.baseline_error = cv::norm(estimated.T) / cv::norm(truth.T) - 1.0;
+  c.baseline_error =
+      cv::norm(estimated.proj_from_cam_translation_mm) / cv::norm(truth.proj_from_cam_translation_mm) - 1.0;
   cv::Vec3d angle;
-  cv::Rodrigues(cv::Mat(estimated.R * truth.R.t()), angle);
+  cv::Rodrigues(cv::Mat(estimated.proj_from_cam_rotation * truth.proj_from_cam_rotation.t()), angle);
   c.rotation_error_deg = cv::norm(angle) * 180.0 / CV_PI;
 
   constexpr int kGrid = 16;
@@ -59,14 +60,15 @@ RigComparison compare_rigs(const StereoRig& estimated, const StereoRig& truth, d
     }
   }
   cv::Vec3d true_om;
-  cv::Rodrigues(truth.R, true_om);
+  cv::Rodrigues(truth.proj_from_cam_rotation, true_om);
   std::vector<cv::Point2d> projector_px;
-  cv::projectPoints(points_cam, true_om, truth.T, truth.projector_matrix, truth.projector_dist_coeffs, projector_px);
+  cv::projectPoints(points_cam, true_om, truth.proj_from_cam_translation_mm, truth.projector_matrix,
+                    truth.projector_dist_coeffs, projector_px);
 
   const auto camera_rays = rays(seen_px, estimated.camera_matrix, estimated.dist_coeffs);
   const auto projector_rays = rays(projector_px, estimated.projector_matrix, estimated.projector_dist_coeffs);
-  const cv::Matx33d cam_from_proj = cv::Matx33d(estimated.R).t();
-  const cv::Vec3d projector_centre = -(cam_from_proj * cv::Vec3d(estimated.T));
+  const cv::Matx33d cam_from_proj = cv::Matx33d(estimated.proj_from_cam_rotation).t();
+  const cv::Vec3d projector_centre = -(cam_from_proj * cv::Vec3d(estimated.proj_from_cam_translation_mm));
   double zz = 0.0;
   double tt = 0.0;
   double sum_sq = 0.0;

@@ -98,8 +98,9 @@ StereoCalibration calibrate_stereo(const std::vector<StereoView>& views, const B
   const int flags = cv::CALIB_USE_INTRINSIC_GUESS | distortion_flags(options.distortion);
   rig.rms =
       cv::stereoCalibrate(object_points, camera_points, projector_points, rig.camera_matrix, rig.dist_coeffs,
-                          rig.projector_matrix, rig.projector_dist_coeffs, camera_size, rig.R, rig.T, rig.E, rig.F,
-                          flags, cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 200, 1e-12));
+                          rig.projector_matrix, rig.projector_dist_coeffs, camera_size, rig.proj_from_cam_rotation,
+                          rig.proj_from_cam_translation_mm, rig.essential, rig.fundamental, flags,
+                          cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 200, 1e-12));
   const bool dense = std::any_of(views.begin(), views.end(), [](const auto& v) { return !v.dense.camera.empty(); });
   std::size_t outliers = 0;
   if (dense) {

@@ -24,7 +24,7 @@ struct StereoView {
 };
 
 struct StereoCalibration {
-  StereoRig rig;             // R, T: projector from camera; uncertainty and rectification filled
+  StereoRig rig;             // uncertainty and rectification filled
   CameraCalibration camera;  // each device alone: the starting point of the joint adjustment
   CameraCalibration projector;
   StereoFit fit;                      // residuals and per-view errors of the joint solution

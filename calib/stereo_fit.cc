@@ -34,9 +34,9 @@ std::vector<double> fitted_parameters(const StereoRig& rig, const std::vector<st
   const auto projector = device_parameters(rig.projector_matrix, rig.projector_dist_coeffs, layout.dist_size);
   p.insert(p.end(), projector.begin(), projector.end());
   cv::Vec3d om;
-  cv::Rodrigues(rig.R, om);
+  cv::Rodrigues(rig.proj_from_cam_rotation, om);
   for (int i = 0; i < 3; ++i) p.push_back(om[i]);
-  for (int i = 0; i < 3; ++i) p.push_back(rig.T.at<double>(i));
+  for (int i = 0; i < 3; ++i) p.push_back(rig.proj_from_cam_translation_mm.at<double>(i));
   for (int v = 0; v < layout.views; ++v) {
     cv::Vec3d rvec;
     cv::Vec3d tvec;
@@ -118,8 +118,8 @@ double adjust_stereo(StereoRig& rig, const std::vector<std::vector<cv::Point3f>>
     *matrix = (cv::Mat_<double>(3, 3) << p[block], 0, p[block + 2], 0, p[block + 1], p[block + 3], 0, 0, 1);
     *dist = cv::Mat(1, layout.dist_size, CV_64F, p.data() + block + 4).clone();
   }
-  cv::Rodrigues(cv::Vec3d(p[layout.om()], p[layout.om() + 1], p[layout.om() + 2]), rig.R);
-  rig.T = (cv::Mat_<double>(3, 1) << p[layout.t()], p[layout.t() + 1], p[layout.t() + 2]);
+  cv::Rodrigues(cv::Vec3d(p[layout.om()], p[layout.om() + 1], p[layout.om() + 2]), rig.proj_from_cam_rotation);
+  rig.proj_from_cam_translation_mm = (cv::Mat_<double>(3, 1) << p[layout.t()], p[layout.t() + 1], p[layout.t() + 2]);
   const std::size_t count = problem.residuals(p).size();
   return count > 0 ? std::sqrt(cost / static_cast<double>(count)) : 0.0;
 }
@@ -163,8 +163,8 @@ StereoFit analyse_stereo_fit(const StereoRig& rig, const std::vector<std::vector
   u.camera_dist_coeffs = std_block(columns.index, variances, 4, layout.dist_size);
   u.projector_intrinsics = std_block(columns.index, variances, layout.device_block(), 4);
   u.projector_dist_coeffs = std_block(columns.index, variances, layout.device_block() + 4, layout.dist_size);
-  u.om = std_block(columns.index, variances, layout.om(), 3);
-  u.T = std_block(columns.index, variances, layout.t(), 3);
+  u.proj_from_cam_rotation_vector = std_block(columns.index, variances, layout.om(), 3);
+  u.proj_from_cam_translation_mm = std_block(columns.index, variances, layout.t(), 3);
 
   std::vector<double> view;
   for (int v = 0; v < layout.views; ++v) {

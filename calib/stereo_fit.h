@@ -34,16 +34,16 @@ struct StereoFit {
 std::size_t reject_dense_outliers(const StereoRig& rig, const std::vector<std::vector<cv::Point3f>>& object_points,
                                   std::vector<StereoCorners>& corners, DistortionModel model, double max_px);
 
-// Adjusts the rig's intrinsics, distortion (the coefficients `model` estimates) and R, T together with every board
-// pose (each started from cv::solvePnP on its camera corners) by Levenberg-Marquardt over all observations, the dense
-// correspondences included, and writes the result into `rig` (R, T and the matrices; E, F and the rectification are
+// Adjusts the rig's intrinsics, distortion (the coefficients `model` estimates) and projector pose together with every
+// board pose (each started from cv::solvePnP on its camera corners) by Levenberg-Marquardt over all observations, the
+// dense correspondences included, and writes the result into `rig` (pose and matrices; E, F and the rectification are
 // left to compute_stereo_geometry). Returns the final RMS residual per coordinate, px.
 double adjust_stereo(StereoRig& rig, const std::vector<std::vector<cv::Point3f>>& object_points,
                      const std::vector<StereoCorners>& corners, DistortionModel model);
 
-// Given the rig's intrinsics, distortion and R, T (held fixed), fits each board pose to all its observations
-// (Gauss-Newton from cv::solvePnP on the camera corners), then linearises the joint problem (both devices'
-// intrinsics and the coefficients `model` estimates, R, T and every pose) at that solution with a numerical
+// Given the rig's intrinsics, distortion and projector pose (held fixed), fits each board pose to all its observations
+// (Gauss-Newton from cv::solvePnP on the camera corners), then linearises the joint problem (both devices' intrinsics
+// and the coefficients `model` estimates, the projector pose and every board pose) at that solution with a numerical
 // Jacobian and returns sigma^2 (J^T J)^-1's diagonal as standard deviations (NaN when the problem is singular).
 // `object_points` are the board's corners (one list per view: the board may be refined per view).
 StereoFit analyse_stereo_fit(const StereoRig& rig, const std::vector<std::vector<cv::Point3f>>& object_points,

@@ -15,10 +15,11 @@ calib::StereoRig true_rig(const Scene& scene) {
   rig.dist_coeffs = scene.camera.dist_coeffs();
   rig.projector_matrix = scene.projector.camera_matrix();
   rig.projector_dist_coeffs = scene.projector.dist_coeffs();
-  const Eigen::Matrix3d R = scene.projector.device_from_world.linear();
-  const Eigen::Vector3d t = scene.projector.device_from_world.translation();
-  cv::eigen2cv(R, rig.R);
-  cv::eigen2cv(t, rig.T);
+  // The simulator's world frame is the camera's.
+  const Eigen::Matrix3d proj_from_cam = scene.projector.device_from_world.linear();
+  const Eigen::Vector3d proj_from_cam_t_mm = scene.projector.device_from_world.translation();
+  cv::eigen2cv(proj_from_cam, rig.proj_from_cam_rotation);
+  cv::eigen2cv(proj_from_cam_t_mm, rig.proj_from_cam_translation_mm);
   for (const auto& object : scene.objects) {
     if (object.checkerboard) {
       rig.board = {object.checkerboard->squares_x - 1, object.checkerboard->squares_y - 1,

@@ -120,9 +120,12 @@ void run_calibrate(const StereoOptions& options) {
   const auto& rig = result.rig;
   print_intrinsics("camera", rig.camera_matrix, rig.dist_coeffs, rig.uncertainty.camera_intrinsics);
   print_intrinsics("projector", rig.projector_matrix, rig.projector_dist_coeffs, rig.uncertainty.projector_intrinsics);
-  std::printf("baseline   %.3f mm  (T = [%.3f %.3f %.3f] +- [%.3f %.3f %.3f])\n", cv::norm(rig.T), rig.T.at<double>(0),
-              rig.T.at<double>(1), rig.T.at<double>(2), rig.uncertainty.T.at<double>(0),
-              rig.uncertainty.T.at<double>(1), rig.uncertainty.T.at<double>(2));
+  std::printf("baseline   %.3f mm  (T = [%.3f %.3f %.3f] +- [%.3f %.3f %.3f])\n",
+              cv::norm(rig.proj_from_cam_translation_mm), rig.proj_from_cam_translation_mm.at<double>(0),
+              rig.proj_from_cam_translation_mm.at<double>(1), rig.proj_from_cam_translation_mm.at<double>(2),
+              rig.uncertainty.proj_from_cam_translation_mm.at<double>(0),
+              rig.uncertainty.proj_from_cam_translation_mm.at<double>(1),
+              rig.uncertainty.proj_from_cam_translation_mm.at<double>(2));
   for (std::size_t i = 0; i < run.view_names.size(); ++i) {
     std::printf("  %-24s camera %.4f px  projector %.4f px  dense %.4f px\n", run.view_names[i].c_str(),
                 result.fit.camera_view_rms_px[i], result.fit.projector_view_rms_px[i], result.fit.dense_view_rms_px[i]);

@@ -53,7 +53,7 @@ cv::Mat sample_rectified_depth(const std::vector<float>& z_rect, const Rectified
 }
 
 outputs::Reconstruction camera_frame_maps(const cv::Mat& z_rect_mm, const cv::Mat& rect_cam, const RfRectifiedRig& rig,
-                                          const cv::Mat& R1) {
+                                          const cv::Mat& rect_from_cam) {
   const cv::Size size = z_rect_mm.size();
   outputs::Reconstruction maps;
   // Depth, points and normals: every pixel written by its row's loop (NaN where none), no serial fill first.
@@ -63,7 +63,7 @@ outputs::Reconstruction camera_frame_maps(const cv::Mat& z_rect_mm, const cv::Ma
   maps.confidence = filled_on_every_core(size, CV_32F, cv::Scalar(0.0f));
   const cv::Vec3f no_point(kNoValue, kNoValue, kNoValue);
   cv::Matx33d cam_from_rect;
-  cv::Mat(R1.t()).copyTo(cam_from_rect);
+  cv::Mat(rect_from_cam.t()).copyTo(cam_from_rect);
   for_each_row(size.height, [&](int y) {
     for (int x = 0; x < size.width; ++x) {
       const float z = z_rect_mm.at<float>(y, x);

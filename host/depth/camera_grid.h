@@ -17,9 +17,10 @@ cv::Mat sample_rectified_depth(const std::vector<float>& z_rect, const Rectified
                                float jump_relative);
 
 // Camera-frame maps from the rectified depth z_rect_mm at each camera pixel (CV_32F, NaN where none): X_rect =
-// z (a, beta, 1) at the pixel's rectified position, X_cam = R1^T X_rect. Normals come from central differences of
-// neighbouring points (one-sided at the edge of a region), turned toward the camera. Confidence is left at 0.
+// z (a, beta, 1) at the pixel's rectified position, X_cam = rect_from_cam^T X_rect. Normals come from central
+// differences of neighbouring points (one-sided at the edge of a region), turned toward the camera. Confidence is left
+// at 0.
 outputs::Reconstruction camera_frame_maps(const cv::Mat& z_rect_mm, const cv::Mat& rect_cam, const RfRectifiedRig& rig,
-                                          const cv::Mat& R1);
+                                          const cv::Mat& rect_from_cam);
 
 }  // namespace rfrecon::depth

@@ -111,7 +111,7 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
     throw std::logic_error("depth method " + method.name() + " returned depth of another size or type than the " +
                            "camera's CV_32F grid");
   }
-  run.maps = camera_frame_maps(z_rect_grid, triangulation.rect_cam, rectified, rectification.R1);
+  run.maps = camera_frame_maps(z_rect_grid, triangulation.rect_cam, rectified, rectification.rect_from_cam);
   fill_confidence(run.maps, z_rect_grid, triangulation, rectified, options);
   clock.lap("camera grid");
   summary["timings"] = clock.timings();

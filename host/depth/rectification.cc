@@ -124,18 +124,19 @@ Rectification depth_rectification(const calib::StereoRig& rig, const std::string
                        static_cast<float>(rows.baseline_mm)};
   rectification.camera_size = rows.camera_size;
   rectification.projector_width = rows.projector_size.width;
-  rectification.R1 = cv::Mat(rows.rect_from_cam).clone();
-  rectification.R2 = cv::Mat(rows.rect_from_proj).clone();
-  rectification.P1 = rows.P1;
-  rectification.P2 = rows.P2;
+  rectification.rect_from_cam = cv::Mat(rows.rect_from_cam).clone();
+  rectification.rect_from_proj = cv::Mat(rows.rect_from_proj).clone();
+  rectification.rect_cam_image_from_rect = rows.rect_cam_image_from_rect;
+  rectification.rect_proj_image_from_rect = rows.rect_proj_image_from_rect;
   const cv::Size camera_size = rig.camera_size;
   std::vector<cv::Point2f> pixels;
   pixels.reserve(static_cast<std::size_t>(camera_size.area()));
   for (int y = 0; y < camera_size.height; ++y) {
     for (int x = 0; x < camera_size.width; ++x) pixels.emplace_back(static_cast<float>(x), static_cast<float>(y));
   }
-  const std::vector<cv::Point2f> rect_cam = calib::undistort_points(
-      pixels, rig.camera_matrix, rig.dist_coeffs, rectification.R1, rectification.P1, calib::undistort_criteria());
+  const std::vector<cv::Point2f> rect_cam =
+      calib::undistort_points(pixels, rig.camera_matrix, rig.dist_coeffs, rectification.rect_from_cam,
+                              rectification.rect_cam_image_from_rect, calib::undistort_criteria());
   rectification.rect_cam = cv::Mat(camera_size, CV_32FC2);
   std::copy(rect_cam.begin(), rect_cam.end(), rectification.rect_cam.begin<cv::Vec2f>());
   std::vector<cv::Point2f> projector_points;
@@ -144,17 +145,19 @@ Rectification depth_rectification(const calib::StereoRig& rig, const std::string
       projector_points.emplace_back(static_cast<float>(x), static_cast<float>(y));
     }
   }
-  const std::vector<cv::Point2f> proj_grid =
-      calib::undistort_points(projector_points, rig.projector_matrix, rig.projector_dist_coeffs, rectification.R2,
-                              rectification.P2, calib::undistort_criteria());
+  const std::vector<cv::Point2f> proj_grid = calib::undistort_points(
+      projector_points, rig.projector_matrix, rig.projector_dist_coeffs, rectification.rect_from_proj,
+      rectification.rect_proj_image_from_rect, calib::undistort_criteria());
   rectification.proj_grid = cv::Mat(rig.projector_size + cv::Size(2, 2), CV_32FC2);
   std::copy(proj_grid.begin(), proj_grid.end(), rectification.proj_grid.begin<cv::Vec2f>());
   if (!with_row_lookups) return rectification;
   rectification.omega_cam = pixel_solid_angles(rig.camera_matrix, rig.dist_coeffs, camera_size);
   rectification.omega_proj = pixel_solid_angles(rig.projector_matrix, rig.projector_dist_coeffs, rig.projector_size);
-  cv::initUndistortRectifyMap(rig.camera_matrix, rig.dist_coeffs, rectification.R1, rectification.P1,
-                              rectification.camera_size, CV_32FC1, rectification.cam_map_x, rectification.cam_map_y);
-  cv::initUndistortRectifyMap(rig.projector_matrix, rig.projector_dist_coeffs, rectification.R2, rectification.P2,
+  cv::initUndistortRectifyMap(rig.camera_matrix, rig.dist_coeffs, rectification.rect_from_cam,
+                              rectification.rect_cam_image_from_rect, rectification.camera_size, CV_32FC1,
+                              rectification.cam_map_x, rectification.cam_map_y);
+  cv::initUndistortRectifyMap(rig.projector_matrix, rig.projector_dist_coeffs, rectification.rect_from_proj,
+                              rectification.rect_proj_image_from_rect,
                               cv::Size(rectification.projector_width, rectification.camera_size.height), CV_32FC1,
                               rectification.proj_map_x, rectification.proj_map_y);
   return rectification;
@@ -178,8 +181,9 @@ std::vector<cv::Point2f> rectify_projector_points(const std::vector<cv::Point2f>
     std::vector<cv::Point2f> exact;
     exact.reserve(off_grid.size());
     for (const std::size_t i : off_grid) exact.push_back(points[i]);
-    exact = calib::undistort_points(exact, rig.projector_matrix, rig.projector_dist_coeffs, rectification.R2,
-                                    rectification.P2, calib::undistort_criteria());
+    exact =
+        calib::undistort_points(exact, rig.projector_matrix, rig.projector_dist_coeffs, rectification.rect_from_proj,
+                                rectification.rect_proj_image_from_rect, calib::undistort_criteria());
     for (std::size_t j = 0; j < off_grid.size(); ++j) rectified[off_grid[j]] = exact[j];
   }
   return rectified;

@@ -22,20 +22,22 @@ struct RectificationOptions {
   float edge_footprint_px2 = 0.0f;
 };
 
-// The rectification the depth stage works in: calib::rectify_rig, computed from the rig's intrinsics, R and T (the
-// rectification keys of rig.yaml are not read, so a file of any version gives the same rows). Rows are epipolar
+// The rectification the depth stage works in: calib::rectify_rig, computed from the rig's intrinsics and projector pose
+// (the rectification keys of rig.yaml are not read, so a file of any version gives the same rows). Rows are epipolar
 // lines for any baseline direction; the focal length is the finer of the two devices', so neither image is sampled
 // coarser than its pixels. With it, the per-pixel lookups that depend on the rig alone: computed once per
 // calibration, they serve every scan made with it (docs/performance.md, "Rig geometry").
 struct Rectification {
-  RfRectifiedRig rig{};     // f, principal points (px), projector offset b (mm, > 0)
-  cv::Size camera_size;     // rectified camera image
-  int projector_width = 0;  // rectified projector image width (its rows are the camera's)
-  cv::Mat R1, R2;           // 3x3 CV_64F rotations: rectified from camera, rectified from projector
-  cv::Mat P1, P2;           // 3x4 CV_64F projection matrices of the rectified camera and projector
-  cv::Mat rect_cam;         // CV_32FC2, camera size: rectified camera position (u, v) of each camera pixel centre
-  cv::Mat proj_grid;        // CV_32FC2, projector size + 2: rectified projector position of each projector
-                            // point (x - 1, y - 1), pixel centres and a pixel of margin around the image
+  RfRectifiedRig rig{};               // f, principal points (px), projector offset b (mm, > 0)
+  cv::Size camera_size;               // rectified camera image
+  int projector_width = 0;            // rectified projector image width (its rows are the camera's)
+  cv::Mat rect_from_cam;              // 3x3 CV_64F rotation (rig.yaml R1)
+  cv::Mat rect_from_proj;             // 3x3 CV_64F rotation (rig.yaml R2)
+  cv::Mat rect_cam_image_from_rect;   // 3x4 CV_64F projection of the rectified camera (rig.yaml P1)
+  cv::Mat rect_proj_image_from_rect;  // 3x4 CV_64F projection of the rectified projector (rig.yaml P2)
+  cv::Mat rect_cam;   // CV_32FC2, camera size: rectified camera position (u, v) of each camera pixel centre
+  cv::Mat proj_grid;  // CV_32FC2, projector size + 2: rectified projector position of each projector
+                      // point (x - 1, y - 1), pixel centres and a pixel of margin around the image
   // Row lookups, for rectify_rows (the integration and the fusion; empty where not asked for):
   cv::Mat omega_cam;               // CV_32F, camera size: solid angle of each camera pixel (host/depth/solid_angle.h)
   cv::Mat omega_proj;              // CV_32F, projector size: the same for each projector pixel

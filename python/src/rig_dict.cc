@@ -46,15 +46,15 @@ py::dict rig_dict(const Rig& rig) {
   dict["dist_coeffs"] = matrix(rig.dist_coeffs.reshape(1, 1));
   dict["projector_matrix"] = matrix(rig.projector_matrix);
   dict["projector_dist_coeffs"] = matrix(rig.projector_dist_coeffs.reshape(1, 1));
-  for (const auto& [key, mat] : {std::pair{"R", &rig.R},
-                                 {"T", &rig.T},
-                                 {"E", &rig.E},
-                                 {"F", &rig.F},
-                                 {"R1", &rig.R1},
-                                 {"R2", &rig.R2},
-                                 {"P1", &rig.P1},
-                                 {"P2", &rig.P2},
-                                 {"Q", &rig.Q}}) {
+  for (const auto& [key, mat] : {std::pair{"R", &rig.proj_from_cam_rotation},
+                                 {"T", &rig.proj_from_cam_translation_mm},
+                                 {"E", &rig.essential},
+                                 {"F", &rig.fundamental},
+                                 {"R1", &rig.rect_from_cam},
+                                 {"R2", &rig.rect_from_proj},
+                                 {"P1", &rig.rect_cam_image_from_rect},
+                                 {"P2", &rig.rect_proj_image_from_rect},
+                                 {"Q", &rig.rect_from_disparity}}) {
     dict[key] = matrix(*mat);
   }
   dict["rectified_camera_size"] = size_tuple(rig.rectified_camera_size);
@@ -68,8 +68,8 @@ py::dict rig_dict(const Rig& rig) {
     dict["dist_coeffs_std"] = matrix(u.camera_dist_coeffs);
     dict["projector_intrinsics_std"] = matrix(u.projector_intrinsics);
     dict["projector_dist_coeffs_std"] = matrix(u.projector_dist_coeffs);
-    dict["om_std"] = matrix(u.om);
-    dict["T_std"] = matrix(u.T);
+    dict["om_std"] = matrix(u.proj_from_cam_rotation_vector);
+    dict["T_std"] = matrix(u.proj_from_cam_translation_mm);
   }
   return dict;
 }
@@ -82,9 +82,10 @@ Rig rig_of(const py::dict& dict) {
   rig.dist_coeffs = matrix_of(dict, "dist_coeffs").reshape(1, 1);
   rig.projector_matrix = matrix_of(dict, "projector_matrix");
   rig.projector_dist_coeffs = matrix_of(dict, "projector_dist_coeffs").reshape(1, 1);
-  rig.R = matrix_of(dict, "R");
-  rig.T = matrix_of(dict, "T");
-  if (rig.T.rows == 1) rig.T = rig.T.t();  // 3x1 from a flat array as well
+  rig.proj_from_cam_rotation = matrix_of(dict, "R");
+  rig.proj_from_cam_translation_mm = matrix_of(dict, "T");
+  if (rig.proj_from_cam_translation_mm.rows == 1)
+    rig.proj_from_cam_translation_mm = rig.proj_from_cam_translation_mm.t();  // 3x1 from a flat array as well
   rig.rms = dict.contains("rms") ? dict["rms"].cast<double>() : 0.0;
   if (dict.contains("per_view_errors")) rig.per_view_errors = dict["per_view_errors"].cast<std::vector<double>>();
   if (dict.contains("board")) {
@@ -97,8 +98,8 @@ Rig rig_of(const py::dict& dict) {
     u.camera_dist_coeffs = matrix_of(dict, "dist_coeffs_std");
     u.projector_intrinsics = matrix_of(dict, "projector_intrinsics_std");
     u.projector_dist_coeffs = matrix_of(dict, "projector_dist_coeffs_std");
-    u.om = matrix_of(dict, "om_std");
-    u.T = matrix_of(dict, "T_std");
+    u.proj_from_cam_rotation_vector = matrix_of(dict, "om_std");
+    u.proj_from_cam_translation_mm = matrix_of(dict, "T_std");
   }
   return complete_rig(std::move(rig), "rig dict");
 }

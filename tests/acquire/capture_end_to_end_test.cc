@@ -77,13 +77,13 @@ TEST(CaptureEndToEnd, PosesCapturedThroughTheCommandCalibrateTheRig) {
   EXPECT_LT(relative(rig.camera_matrix.at<double>(1, 1), truth.camera_matrix.at<double>(1, 1)), 0.001);
   EXPECT_LT(relative(rig.projector_matrix.at<double>(0, 0), truth.projector_matrix.at<double>(0, 0)), 0.001);
   EXPECT_LT(relative(rig.projector_matrix.at<double>(1, 1), truth.projector_matrix.at<double>(1, 1)), 0.001);
-  EXPECT_LT(relative(cv::norm(rig.T), cv::norm(truth.T)), 0.001);
+  EXPECT_LT(relative(cv::norm(rig.proj_from_cam_translation_mm), cv::norm(truth.proj_from_cam_translation_mm)), 0.001);
   std::printf(
       "4 captured poses: RMS %.4f px, camera fx %.2f (true %.2f), projector fx %.2f (true %.2f), baseline "
       "%.3f mm (true %.3f)\n",
       rig.rms, rig.camera_matrix.at<double>(0, 0), truth.camera_matrix.at<double>(0, 0),
-      rig.projector_matrix.at<double>(0, 0), truth.projector_matrix.at<double>(0, 0), cv::norm(rig.T),
-      cv::norm(truth.T));
+      rig.projector_matrix.at<double>(0, 0), truth.projector_matrix.at<double>(0, 0),
+      cv::norm(rig.proj_from_cam_translation_mm), cv::norm(truth.proj_from_cam_translation_mm));
 }
 
 // The object's figures of `evaluate` (coverage %, RMS mm) for a reconstruction, on the pixels every one of `others`

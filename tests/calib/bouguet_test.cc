@@ -117,10 +117,11 @@ TEST_F(BouguetTest, StereoPoseMatchesTheToolbox) {
   const cv::Vec3d published(-99.80198, 1.12443, 0.05041);
   const cv::Vec3d sigma(0.14200, 0.11352, 0.49773);
   for (int i = 0; i < 3; ++i) {
-    RecordProperty("T" + std::to_string(i), std::to_string(result.rig.T.at<double>(i)));
-    RecordProperty("T" + std::to_string(i) + "_std", std::to_string(result.rig.uncertainty.T.at<double>(i)));
-    EXPECT_NEAR(result.rig.T.at<double>(i), published[i], sigma[i]) << "T[" << i << "]";
-    EXPECT_LE(result.rig.uncertainty.T.at<double>(i), sigma[i]) << "sigma of T[" << i << "]";
+    RecordProperty("T" + std::to_string(i), std::to_string(result.rig.proj_from_cam_translation_mm.at<double>(i)));
+    RecordProperty("T" + std::to_string(i) + "_std",
+                   std::to_string(result.rig.uncertainty.proj_from_cam_translation_mm.at<double>(i)));
+    EXPECT_NEAR(result.rig.proj_from_cam_translation_mm.at<double>(i), published[i], sigma[i]) << "T[" << i << "]";
+    EXPECT_LE(result.rig.uncertainty.proj_from_cam_translation_mm.at<double>(i), sigma[i]) << "sigma of T[" << i << "]";
   }
 }
 

@@ -57,13 +57,16 @@ TEST_F(CalibrationAccuracyTest, ProjectorIntrinsics) {
 }
 
 TEST_F(CalibrationAccuracyTest, StereoPose) {
-  EXPECT_LT(relative_error(cv::norm(estimated_.T), cv::norm(truth_.T)), 0.0003) << "baseline";
-  const cv::Mat difference = estimated_.R * truth_.R.t();
+  EXPECT_LT(
+      relative_error(cv::norm(estimated_.proj_from_cam_translation_mm), cv::norm(truth_.proj_from_cam_translation_mm)),
+      0.0003)
+      << "baseline";
+  const cv::Mat difference = estimated_.proj_from_cam_rotation * truth_.proj_from_cam_rotation.t();
   cv::Mat rvec;
   cv::Rodrigues(difference, rvec);
   const double rotation_error_deg = cv::norm(rvec) * 180.0 / CV_PI;
   RecordProperty("rotation_error_deg", std::to_string(rotation_error_deg));
-  RecordProperty("baseline_mm", std::to_string(cv::norm(estimated_.T)));
+  RecordProperty("baseline_mm", std::to_string(cv::norm(estimated_.proj_from_cam_translation_mm)));
   EXPECT_LT(rotation_error_deg, 0.03);
   EXPECT_GT(estimated_.rms, 0.0);
   EXPECT_LT(estimated_.rms, 0.08) << "stereo reprojection RMS, px";
@@ -84,17 +87,17 @@ std::pair<double, double> rectified_row_error(const fs::path& poses_dir, const S
   std::vector<cv::Point2d> camera_px;
   std::vector<cv::Point2d> projector_px;
   cv::Mat rvec_proj;
-  cv::Rodrigues(truth.R, rvec_proj);
+  cv::Rodrigues(truth.proj_from_cam_rotation, rvec_proj);
   cv::projectPoints(corners_cam_mm, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), truth.camera_matrix, truth.dist_coeffs,
                     camera_px);
-  cv::projectPoints(corners_cam_mm, rvec_proj, truth.T, truth.projector_matrix, truth.projector_dist_coeffs,
-                    projector_px);
+  cv::projectPoints(corners_cam_mm, rvec_proj, truth.proj_from_cam_translation_mm, truth.projector_matrix,
+                    truth.projector_dist_coeffs, projector_px);
   std::vector<cv::Point2d> camera_rect;
   std::vector<cv::Point2d> projector_rect;
-  cv::undistortPoints(camera_px, camera_rect, estimated.camera_matrix, estimated.dist_coeffs, estimated.R1,
-                      estimated.P1);
+  cv::undistortPoints(camera_px, camera_rect, estimated.camera_matrix, estimated.dist_coeffs, estimated.rect_from_cam,
+                      estimated.rect_cam_image_from_rect);
   cv::undistortPoints(projector_px, projector_rect, estimated.projector_matrix, estimated.projector_dist_coeffs,
-                      estimated.R2, estimated.P2);
+                      estimated.rect_from_proj, estimated.rect_proj_image_from_rect);
   double worst = 0.0;
   double sum_sq = 0.0;
   for (std::size_t i = 0; i < camera_rect.size(); ++i) {
@@ -124,7 +127,10 @@ TEST_F(CalibrationAccuracyTest, ReportedUncertaintyCoversTheError) {
     }
   }
   for (int k = 0; k < 3; ++k) {
-    EXPECT_LT(std::abs(estimated_.T.at<double>(k) - truth_.T.at<double>(k)), 3.0 * u.T.at<double>(k)) << "T " << k;
+    EXPECT_LT(std::abs(estimated_.proj_from_cam_translation_mm.at<double>(k) -
+                       truth_.proj_from_cam_translation_mm.at<double>(k)),
+              3.0 * u.proj_from_cam_translation_mm.at<double>(k))
+        << "T " << k;
   }
   const auto report = read_json_file(kPoses / "estimated" / "rig_report" / "report.json");
   EXPECT_EQ(report.at("views").size(), estimated_.per_view_errors.size());
@@ -172,9 +178,9 @@ TEST_F(CalibrationAccuracyTest, CornerComparisonMeasuresAKnownOffset) {
   cv::projectPoints(view.true_corners_cam_mm, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), truth_.camera_matrix,
                     truth_.dist_coeffs, camera_px);
   cv::Mat om;
-  cv::Rodrigues(truth_.R, om);
-  cv::projectPoints(view.true_corners_cam_mm, om, truth_.T, truth_.projector_matrix, truth_.projector_dist_coeffs,
-                    projector_px);
+  cv::Rodrigues(truth_.proj_from_cam_rotation, om);
+  cv::projectPoints(view.true_corners_cam_mm, om, truth_.proj_from_cam_translation_mm, truth_.projector_matrix,
+                    truth_.projector_dist_coeffs, projector_px);
   for (const auto& p : camera_px) view.camera_px.emplace_back(p.x + 0.1, p.y);
   for (auto p = projector_px.rbegin(); p != projector_px.rend(); ++p) view.projector_px.emplace_back(p->x, p->y - 0.2);
   const auto comparison = compare_corners({view}, truth_);
@@ -201,7 +207,9 @@ TEST_F(CalibrationAccuracyTest, DepthScaleOfTheEstimatedRig) {
 // depth scale error and depth RMS both exactly 1e-4, baseline error 1e-4, no focal, principal-point or rotation error.
 TEST_F(CalibrationAccuracyTest, RigComparisonMeasuresAKnownBaselineError) {
   StereoRig longer = truth_;
-  longer.T = cv::Mat(truth_.T * (1.0 + 1e-4));  // a new matrix: assigning the expression would write into truth_.T
+  longer.proj_from_cam_translation_mm = cv::Mat(
+      truth_.proj_from_cam_translation_mm *
+      (1.0 + 1e-4));  // a new matrix: assigning the expression would write into truth_.proj_from_cam_translation_mm
   const auto comparison = compare_rigs(longer, truth_);
   EXPECT_GT(comparison.points, 300);
   EXPECT_NEAR(comparison.depth_scale_error, 1e-4, 1e-9);
@@ -227,7 +235,10 @@ TEST(CalibrationResolutionRatioTest, ProjectorFinerThanCamera) {
   const auto truth = read_rig(poses / "truth" / "rig.yaml");
   const auto estimated = read_rig(poses / "estimated" / "rig.yaml");
   expect_intrinsics_near(estimated.projector_matrix, truth.projector_matrix, 0.005, 2.0);
-  EXPECT_LT(relative_error(cv::norm(estimated.T), cv::norm(truth.T)), 0.005) << "baseline";
+  EXPECT_LT(
+      relative_error(cv::norm(estimated.proj_from_cam_translation_mm), cv::norm(truth.proj_from_cam_translation_mm)),
+      0.005)
+      << "baseline";
 }
 
 TEST(CameraOnlyCalibrationTest, FocalLengthFromWhiteFrames) {

@@ -57,8 +57,8 @@ StereoRig make_rig(const RigCase& c) {
   const cv::Vec3d down = forward.cross(right);
   const cv::Matx33d proj_from_cam(right[0], right[1], right[2], down[0], down[1], down[2], forward[0], forward[1],
                                   forward[2]);
-  rig.R = cv::Mat(proj_from_cam).clone();
-  rig.T = cv::Mat(-(proj_from_cam * centre)).clone();
+  rig.proj_from_cam_rotation = cv::Mat(proj_from_cam).clone();
+  rig.proj_from_cam_translation_mm = cv::Mat(-(proj_from_cam * centre)).clone();
   compute_stereo_geometry(rig);
   return rig;
 }
@@ -70,13 +70,13 @@ void visible_points(const StereoRig& rig, std::vector<cv::Point3d>& points, std:
   std::uniform_real_distribution<double> lateral(-200.0, 200.0), depth(450.0, 800.0);
   const cv::Vec3d no_rotation(0, 0, 0), no_translation(0, 0, 0);
   cv::Vec3d rvec;
-  cv::Rodrigues(rig.R, rvec);
+  cv::Rodrigues(rig.proj_from_cam_rotation, rvec);
   for (int tries = 0; points.size() < 400 && tries < 1000000; ++tries) {
     const cv::Point3d X(lateral(random), lateral(random), depth(random));
     std::vector<cv::Point2d> c, p;
     cv::projectPoints(std::vector<cv::Point3d>{X}, no_rotation, no_translation, rig.camera_matrix, rig.dist_coeffs, c);
-    cv::projectPoints(std::vector<cv::Point3d>{X}, rvec, cv::Vec3d(rig.T), rig.projector_matrix,
-                      rig.projector_dist_coeffs, p);
+    cv::projectPoints(std::vector<cv::Point3d>{X}, rvec, cv::Vec3d(rig.proj_from_cam_translation_mm),
+                      rig.projector_matrix, rig.projector_dist_coeffs, p);
     const cv::Rect2d camera(0, 0, rig.camera_size.width - 1, rig.camera_size.height - 1);
     const cv::Rect2d projector(0, 0, rig.projector_size.width - 1, rig.projector_size.height - 1);
     if (!camera.contains(c[0]) || !projector.contains(p[0])) continue;
@@ -97,11 +97,13 @@ TEST_P(RectificationTest, RowsMatchAndDisparityGivesDepth) {
   std::vector<cv::Point2d> cam_px, proj_px, cam_rect, proj_rect;
   visible_points(rig, points, cam_px, proj_px);
   ASSERT_EQ(points.size(), 400u);
-  cv::undistortPoints(cam_px, cam_rect, rig.camera_matrix, rig.dist_coeffs, rig.R1, rig.P1, tight());
-  cv::undistortPoints(proj_px, proj_rect, rig.projector_matrix, rig.projector_dist_coeffs, rig.R2, rig.P2, tight());
+  cv::undistortPoints(cam_px, cam_rect, rig.camera_matrix, rig.dist_coeffs, rig.rect_from_cam,
+                      rig.rect_cam_image_from_rect, tight());
+  cv::undistortPoints(proj_px, proj_rect, rig.projector_matrix, rig.projector_dist_coeffs, rig.rect_from_proj,
+                      rig.rect_proj_image_from_rect, tight());
   cv::Mat X_rect;
-  cv::triangulatePoints(rig.P1, rig.P2, cam_rect, proj_rect, X_rect);
-  const cv::Matx44d Q(rig.Q);
+  cv::triangulatePoints(rig.rect_cam_image_from_rect, rig.rect_proj_image_from_rect, cam_rect, proj_rect, X_rect);
+  const cv::Matx44d Q(rig.rect_from_disparity);
   for (std::size_t i = 0; i < points.size(); ++i) {
     const cv::Vec3d expected = rect.rect_from_cam * cv::Vec3d(points[i]);  // rectified camera frame
     // Same row within 1e-6 px: epipolar lines are rows.
@@ -143,10 +145,11 @@ TEST_P(RectificationTest, RectifiedImagesHoldEveryPixelAtFullResolution) {
     EXPECT_GE(cv::norm(rect_steps[1] - rect_steps[0]), 0.95) << device;
     EXPECT_GE(cv::norm(rect_steps[2] - rect_steps[0]), 0.95) << device;
   };
-  check(rig.camera_matrix, rig.dist_coeffs, rig.R1, rig.P1, rig.camera_size, rect.camera_size, false, "camera");
+  check(rig.camera_matrix, rig.dist_coeffs, rig.rect_from_cam, rig.rect_cam_image_from_rect, rig.camera_size,
+        rect.camera_size, false, "camera");
   // The projector's rectified image has the camera's rows: only its columns must all be inside.
-  check(rig.projector_matrix, rig.projector_dist_coeffs, rig.R2, rig.P2, rig.projector_size, rect.projector_size, true,
-        "projector");
+  check(rig.projector_matrix, rig.projector_dist_coeffs, rig.rect_from_proj, rig.rect_proj_image_from_rect,
+        rig.projector_size, rect.projector_size, true, "projector");
 }
 
 TEST_P(RectificationTest, RigFileHoldsTheSameRectification) {
@@ -159,11 +162,11 @@ TEST_P(RectificationTest, RigFileHoldsTheSameRectification) {
   for (const char* key : {"R1", "R2", "P1", "P2", "Q"}) {
     cv::Mat from_file;
     fs[key] >> from_file;
-    const cv::Mat& expected = std::string(key) == "R1"   ? rig.R1
-                              : std::string(key) == "R2" ? rig.R2
-                              : std::string(key) == "P1" ? rig.P1
-                              : std::string(key) == "P2" ? rig.P2
-                                                         : rig.Q;
+    const cv::Mat& expected = std::string(key) == "R1"   ? rig.rect_from_cam
+                              : std::string(key) == "R2" ? rig.rect_from_proj
+                              : std::string(key) == "P1" ? rig.rect_cam_image_from_rect
+                              : std::string(key) == "P2" ? rig.rect_proj_image_from_rect
+                                                         : rig.rect_from_disparity;
     EXPECT_LE(cv::norm(from_file, expected, cv::NORM_INF), 1e-9 * (1.0 + cv::norm(expected, cv::NORM_INF))) << key;
   }
 }
@@ -186,8 +189,9 @@ TEST(Rectification, OlderRigFilesReadTheSame) {
   text.replace(r1, text.find(',', r1) - r1, "0.5");
   std::ofstream(dir.path() / "old.yaml") << text;
   const StereoRig back = read_rig(dir.path() / "old.yaml");
-  EXPECT_LE(cv::norm(back.R1, rig.R1, cv::NORM_INF), 1e-12);
-  EXPECT_LE(cv::norm(back.P2, rig.P2, cv::NORM_INF), 1e-9 * cv::norm(rig.P2, cv::NORM_INF));
+  EXPECT_LE(cv::norm(back.rect_from_cam, rig.rect_from_cam, cv::NORM_INF), 1e-12);
+  EXPECT_LE(cv::norm(back.rect_proj_image_from_rect, rig.rect_proj_image_from_rect, cv::NORM_INF),
+            1e-9 * cv::norm(rig.rect_proj_image_from_rect, cv::NORM_INF));
 }
 
 TEST(Rectification, DegenerateRigsNameTheKey) {
@@ -200,11 +204,12 @@ TEST(Rectification, DegenerateRigsNameTheKey) {
     }
   };
   StereoRig rig = make_rig(kCases[0]);
-  rig.T = cv::Mat::zeros(3, 1, CV_64F);
+  rig.proj_from_cam_translation_mm = cv::Mat::zeros(3, 1, CV_64F);
   expect_error(rig, "T");
   rig = make_rig(kCases[0]);
-  rig.R = cv::Mat::eye(3, 3, CV_64F);
-  rig.T = (cv::Mat_<double>(3, 1) << 0.0, 0.0, -150.0);  // the projector straight ahead of the camera
+  rig.proj_from_cam_rotation = cv::Mat::eye(3, 3, CV_64F);
+  rig.proj_from_cam_translation_mm =
+      (cv::Mat_<double>(3, 1) << 0.0, 0.0, -150.0);  // the projector straight ahead of the camera
   expect_error(rig, "T");
   rig = make_rig(kCases[0]);
   rig.projector_matrix.at<double>(0, 0) = -1.0;

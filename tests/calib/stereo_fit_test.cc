@@ -123,14 +123,14 @@ TEST(StereoFitTest, StandardDeviationsMatchTheSpreadOverNoiseDraws) {
                               rig.camera_matrix.at<double>(0, 2),
                               rig.projector_matrix.at<double>(1, 1),
                               rig.projector_matrix.at<double>(1, 2),
-                              rig.T.at<double>(1),
-                              rig.T.at<double>(2)};
+                              rig.proj_from_cam_translation_mm.at<double>(1),
+                              rig.proj_from_cam_translation_mm.at<double>(2)};
     const double sigmas[6] = {u.camera_intrinsics.at<double>(0),
                               u.camera_intrinsics.at<double>(2),
                               u.projector_intrinsics.at<double>(1),
                               u.projector_intrinsics.at<double>(3),
-                              u.T.at<double>(1),
-                              u.T.at<double>(2)};
+                              u.proj_from_cam_translation_mm.at<double>(1),
+                              u.proj_from_cam_translation_mm.at<double>(2)};
     for (int k = 0; k < 6; ++k) {
       estimates[k].push_back(values[k]);
       reported[k] += sigmas[k] / kDraws;
@@ -150,7 +150,7 @@ TEST(StereoFitTest, ExactCornersLeaveNoResidual) {
   const auto result = calibrate_stereo(observe(board_poses(10, 40.0), 0.0, rng), kBoard, kCameraSize, kProjectorSize);
   EXPECT_LT(result.fit.residual_sigma_px, 1e-4);
   EXPECT_NEAR(result.rig.camera_matrix.at<double>(0, 0), 800.0, 1e-3);
-  EXPECT_NEAR(cv::norm(result.rig.T), cv::norm(kT), 1e-4);
+  EXPECT_NEAR(cv::norm(result.rig.proj_from_cam_translation_mm), cv::norm(kT), 1e-4);
   ASSERT_EQ(result.fit.camera_residuals_px.size(), 10u);
   EXPECT_EQ(result.fit.camera_residuals_px[0].size(), 54u);
 }
@@ -158,7 +158,7 @@ TEST(StereoFitTest, ExactCornersLeaveNoResidual) {
 // The relative depth scale of a rig: X = b f / d, so to first order the relative errors of the camera's focal length
 // (which sets the board's distance) and of the baseline.
 double scale_error(const StereoRig& rig) {
-  return rig.camera_matrix.at<double>(0, 0) / kCamera(0, 0) - cv::norm(rig.T) / cv::norm(kT);
+  return rig.camera_matrix.at<double>(0, 0) / kCamera(0, 0) - cv::norm(rig.proj_from_cam_translation_mm) / cv::norm(kT);
 }
 
 // Dense correspondences (500 per pose, 0.03 px like the rendered boards') pin what the corners leave loose: over 12
@@ -202,7 +202,7 @@ TEST(StereoFitTest, ExactDenseCorrespondencesLeaveNoResidualOnceOutliersAreOut) 
   EXPECT_NE(std::find(result.warnings.begin(), result.warnings.end(), said), result.warnings.end());
   EXPECT_LT(result.fit.residual_sigma_px, 1e-4);
   EXPECT_NEAR(result.rig.camera_matrix.at<double>(0, 0), 800.0, 1e-3);
-  EXPECT_NEAR(cv::norm(result.rig.T), cv::norm(kT), 1e-4);
+  EXPECT_NEAR(cv::norm(result.rig.proj_from_cam_translation_mm), cv::norm(kT), 1e-4);
   ASSERT_EQ(result.fit.dense_view_rms_px.size(), 10u);
   EXPECT_LT(result.fit.dense_view_rms_px[0], 1e-4);
 }

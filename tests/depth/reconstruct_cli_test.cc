@@ -69,7 +69,7 @@ TEST_F(ReconstructCliTest, CalibrationOfAnotherSizeIsAnInputError) {
 
 TEST_F(ReconstructCliTest, DegenerateCalibrationIsAnInputErrorNamingTheKey) {
   calib::StereoRig no_baseline = small_rig_;
-  no_baseline.T = cv::Mat::zeros(3, 1, CV_64F);  // camera and projector centres coincide
+  no_baseline.proj_from_cam_translation_mm = cv::Mat::zeros(3, 1, CV_64F);  // camera and projector centres coincide
   calib::write_rig(no_baseline, dir_ / "no_baseline.yaml");
   auto result = reconstruct(dir_ / "no_baseline.yaml");
   EXPECT_EQ(result.exit_code, 3) << result.output;

@@ -27,8 +27,9 @@ calib::StereoRig projector_above() {
   rig.projector_dist_coeffs = (cv::Mat_<double>(1, 5) << -0.15, 0.08, 0.001, -0.0008, 0.0);
   // 170 mm above the camera, tilted 15 degrees down toward the scene.
   const double tilt = 15.0 * CV_PI / 180.0;
-  rig.R = (cv::Mat_<double>(3, 3) << 1, 0, 0, 0, std::cos(tilt), -std::sin(tilt), 0, std::sin(tilt), std::cos(tilt));
-  rig.T = -rig.R * (cv::Mat_<double>(3, 1) << 20, -170, 0);
+  rig.proj_from_cam_rotation =
+      (cv::Mat_<double>(3, 3) << 1, 0, 0, 0, std::cos(tilt), -std::sin(tilt), 0, std::sin(tilt), std::cos(tilt));
+  rig.proj_from_cam_translation_mm = -rig.proj_from_cam_rotation * (cv::Mat_<double>(3, 1) << 20, -170, 0);
   calib::compute_stereo_geometry(rig);
   return rig;
 }
@@ -45,8 +46,9 @@ TEST(DepthRectificationTest, ProjectorPointsInterpolatedOnTheGridMatchTheirUndis
   points.push_back({-3.0f, 400.0f});  // off the grid: undistorted exactly
   points.push_back({500.0f, 770.0f});
   const auto interpolated = rectify_projector_points(points, rig, rectification);
-  const auto exact = calib::undistort_points(points, rig.projector_matrix, rig.projector_dist_coeffs, rectification.R2,
-                                             rectification.P2, calib::undistort_criteria());
+  const auto exact =
+      calib::undistort_points(points, rig.projector_matrix, rig.projector_dist_coeffs, rectification.rect_from_proj,
+                              rectification.rect_proj_image_from_rect, calib::undistort_criteria());
   // Bilinear interpolation over one pixel of a smooth map errs by (1/8) px^2 times its second derivative: up to about
   // 1.2e-4 px on this lens (k1 = -0.15), with the float rounding of the grid, of the result and of the exact value
   // (up to 6e-5 px each at these coordinates). 2.5e-4 px of disparity is 0.4 um of depth at 600 mm on this rig.

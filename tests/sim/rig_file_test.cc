@@ -41,15 +41,15 @@ TEST_F(RigFileTest, RoundTripIsExact) {
                              {back.dist_coeffs, rig.dist_coeffs},
                              {back.projector_matrix, rig.projector_matrix},
                              {back.projector_dist_coeffs, rig.projector_dist_coeffs},
-                             {back.R, rig.R},
-                             {back.T, rig.T},
-                             {back.E, rig.E},
-                             {back.F, rig.F},
-                             {back.R1, rig.R1},
-                             {back.R2, rig.R2},
-                             {back.P1, rig.P1},
-                             {back.P2, rig.P2},
-                             {back.Q, rig.Q}}) {
+                             {back.proj_from_cam_rotation, rig.proj_from_cam_rotation},
+                             {back.proj_from_cam_translation_mm, rig.proj_from_cam_translation_mm},
+                             {back.essential, rig.essential},
+                             {back.fundamental, rig.fundamental},
+                             {back.rect_from_cam, rig.rect_from_cam},
+                             {back.rect_from_proj, rig.rect_from_proj},
+                             {back.rect_cam_image_from_rect, rig.rect_cam_image_from_rect},
+                             {back.rect_proj_image_from_rect, rig.rect_proj_image_from_rect},
+                             {back.rect_from_disparity, rig.rect_from_disparity}}) {
     EXPECT_EQ(max_difference(a, b), 0.0);
   }
   EXPECT_EQ(back.rms, 0.123);
@@ -66,22 +66,25 @@ TEST_F(RigFileTest, RectificationAlignsRowsAndEpipolarGeometryHolds) {
   const calib::StereoRig rig = sim::true_rig(scene);
   const cv::Mat rvec_p = [&] {
     cv::Mat v;
-    cv::Rodrigues(rig.R, v);
+    cv::Rodrigues(rig.proj_from_cam_rotation, v);
     return v;
   }();
   for (const cv::Point3d X : {cv::Point3d(0, 0, 600), cv::Point3d(-40, 30, 580), cv::Point3d(50, -35, 650)}) {
     std::vector<cv::Point2d> cam, proj, cam_rect, proj_rect;
     cv::projectPoints(std::vector<cv::Point3d>{X}, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), rig.camera_matrix,
                       rig.dist_coeffs, cam);
-    cv::projectPoints(std::vector<cv::Point3d>{X}, rvec_p, rig.T, rig.projector_matrix, rig.projector_dist_coeffs,
-                      proj);
-    cv::undistortPoints(cam, cam_rect, rig.camera_matrix, rig.dist_coeffs, rig.R1, rig.P1);
-    cv::undistortPoints(proj, proj_rect, rig.projector_matrix, rig.projector_dist_coeffs, rig.R2, rig.P2);
+    cv::projectPoints(std::vector<cv::Point3d>{X}, rvec_p, rig.proj_from_cam_translation_mm, rig.projector_matrix,
+                      rig.projector_dist_coeffs, proj);
+    cv::undistortPoints(cam, cam_rect, rig.camera_matrix, rig.dist_coeffs, rig.rect_from_cam,
+                        rig.rect_cam_image_from_rect);
+    cv::undistortPoints(proj, proj_rect, rig.projector_matrix, rig.projector_dist_coeffs, rig.rect_from_proj,
+                        rig.rect_proj_image_from_rect);
     EXPECT_NEAR(cam_rect[0].y, proj_rect[0].y, 1e-6);
     const cv::Mat xc = (cv::Mat_<double>(3, 1) << X.x / X.z, X.y / X.z, 1.0);
-    const cv::Mat Xp = rig.R * cv::Mat(cv::Vec3d(X.x, X.y, X.z)) + rig.T;
+    const cv::Mat Xp =
+        rig.proj_from_cam_rotation * cv::Mat(cv::Vec3d(X.x, X.y, X.z)) + rig.proj_from_cam_translation_mm;
     const cv::Mat xp = Xp / Xp.at<double>(2);
-    EXPECT_NEAR(cv::Mat(xp.t() * rig.E * xc).at<double>(0), 0.0, 1e-9);
+    EXPECT_NEAR(cv::Mat(xp.t() * rig.essential * xc).at<double>(0), 0.0, 1e-9);
   }
 }
 
@@ -192,7 +195,7 @@ TEST_F(RigFileTest, LayoutCheckKeepsWhatOpenCvWritesOrReads) {
   std::ofstream(file_, std::ios::trunc | std::ios::binary) << edited;
   const calib::StereoRig back = calib::read_rig(file_);
   EXPECT_EQ(max_difference(back.camera_matrix, rig.camera_matrix), 0.0);
-  EXPECT_EQ(max_difference(back.T, rig.T), 0.0);
+  EXPECT_EQ(max_difference(back.proj_from_cam_translation_mm, rig.proj_from_cam_translation_mm), 0.0);
   EXPECT_EQ(back.camera_size, rig.camera_size);
 }
 
