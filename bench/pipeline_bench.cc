@@ -119,7 +119,7 @@ capture::CaptureManifest manifest(bool gray_only) {
   if (gray_only) {
     std::vector<capture::Frame> kept;
     for (const auto& frame : m.frames) {
-      if (frame.pattern.kind != capture::PatternKind::kDot) kept.push_back(frame);
+      if (frame.pattern.kind != capture::pattern_kind::kDot) kept.push_back(frame);
     }
     m.frames = kept;
     m.dot_spacing = 0;

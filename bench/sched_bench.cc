@@ -150,7 +150,7 @@ const fs::path& capture_dir() {
     manifest.dot_spacing = kDotSpacing;
     const auto sequence = capture::make_protocol({projector, kDotSpacing});
     for (std::size_t i = 0; i < sequence.size(); ++i) {
-      const cv::Mat projected = capture::render_pattern(sequence[i], projector, kDotSpacing);
+      const cv::Mat projected = capture::render_pattern(sequence[i], {projector, kDotSpacing});
       cv::Mat frame(camera, CV_8U);
       for (int v = 0; v < camera.height; ++v) {
         const auto* row = projected.ptr<unsigned char>(static_cast<int>(0.75 * v));

@@ -11,7 +11,7 @@
 #include "bench/bench_common.h"
 #include "host/capture/protocol.h"
 #include "host/cl/device_selection.h"
-#include "host/transport/accumulator.h"
+#include "host/transport/graycode_accumulator.h"
 
 namespace {
 
@@ -32,7 +32,7 @@ struct Frames {
 
 // Camera pixel (u, v) sees projector pixel (0.8 u, 0.75 v): value 0.8 * lit + 0.03 ambient, 1 DN noise, 8 bits.
 cv::Mat render(const capture::Pattern& pattern, cv::RNG& random) {
-  const cv::Mat projected = capture::render_pattern(pattern, kProjector, kDotSpacing);
+  const cv::Mat projected = capture::render_pattern(pattern, {kProjector, kDotSpacing});
   cv::Mat noise(kCamera, CV_32F);
   random.fill(noise, cv::RNG::NORMAL, 0.0, 1.0);
   cv::Mat frame(kCamera, CV_8U);
@@ -51,7 +51,7 @@ const Frames& frames() {
     Frames f;
     cv::RNG random(1);
     for (const auto& pattern : capture::make_protocol({kProjector, kDotSpacing})) {
-      if (pattern.kind == capture::PatternKind::kDot) {
+      if (pattern.kind == capture::pattern_kind::kDot) {
         if (f.dots.size() == kDotFramesKept) continue;
         cv::Mat linear;
         render(pattern, random).convertTo(linear, CV_32F, 1.0 / 255.0);
@@ -88,12 +88,12 @@ void set_counters(benchmark::State& state, double frames_per_iteration, double b
   rfrecon::bench::set_bandwidth_counters(state, bytes_per_iteration);
 }
 
-void decode(transport::TransportAccumulator& accumulator) {
+void decode(transport::GraycodeAccumulator& accumulator) {
   const auto& f = frames();
   for (std::size_t i = 2; i < f.gray_sequence.size(); i += 2) {
     const auto& pattern = f.gray_sequence[i];
     const auto axis =
-        pattern.kind == capture::PatternKind::kGrayColumn ? transport::GrayAxis::kColumns : transport::GrayAxis::kRows;
+        pattern.kind == capture::pattern_kind::kGrayColumn ? transport::GrayAxis::kColumns : transport::GrayAxis::kRows;
     accumulator.add_gray_pair(axis, pattern.bit, f.linear[i], f.linear[i + 1]);
   }
   accumulator.finish_gray(f.linear[0], f.linear[1]);

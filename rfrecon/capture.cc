@@ -50,19 +50,21 @@ cv::Mat Capture::frame(std::size_t index) const {
   return source.load(manifest_, index, capture::FrameForm::kRaw);
 }
 
-Manifest make_manifest(cv::Size projector_size, cv::Size camera_size, int bit_depth, int dot_spacing) {
+Manifest make_manifest(cv::Size projector_size, cv::Size camera_size, int bit_depth, int dot_spacing,
+                       const std::string& family) {
   check_image_size(projector_size, "make_manifest: projector");
   check_image_size(camera_size, "make_manifest: camera");
-  if (dot_spacing < 0 || dot_spacing > capture::kMaxDotSpacing) {
-    throw InputError("make_manifest: dot_spacing " + std::to_string(dot_spacing) + " is outside 0 to " +
-                     std::to_string(capture::kMaxDotSpacing));
-  }
   Manifest manifest;
+  manifest.family = family;
   manifest.projector_size = projector_size;
   manifest.camera_size = camera_size;
   manifest.bit_depth = bit_depth;
   manifest.dot_spacing = dot_spacing;
-  manifest.frames = capture::protocol_frames({projector_size, dot_spacing});
+  try {
+    manifest.frames = capture::protocol_frames(capture::protocol_options(manifest));
+  } catch (const InputError& error) {
+    throw InputError(std::string("make_manifest: ") + error.what());
+  }
   capture::validate_manifest(manifest, "make_manifest");
   return manifest;
 }
@@ -72,7 +74,7 @@ cv::Mat pattern_image(const Manifest& manifest, std::size_t index) {
     throw InputError("pattern_image: frame " + std::to_string(index) + " of a manifest of " +
                      std::to_string(manifest.frames.size()) + " frames");
   }
-  return capture::render_pattern(manifest.frames[index].pattern, manifest.projector_size, manifest.dot_spacing);
+  return capture::render_pattern(manifest.frames[index].pattern, capture::protocol_options(manifest));
 }
 
 }  // namespace rfrecon

@@ -18,12 +18,14 @@
 #include "calib/stereo_calibration.h"
 #include "host/acquire/capture_run.h"
 #include "host/capture/manifest.h"
+#include "host/capture/pattern_family.h"
 #include "host/cl/error.h"
 #include "host/core/errors.h"
 #include "host/core/progress.h"
 #include "host/depth/depth_option_table.h"
 #include "host/depth/reconstruct_depth.h"
 #include "host/outputs/reconstruction.h"
+#include "host/transport/decoding_family.h"
 #include "host/transport/transport_types.h"
 
 namespace rfrecon {
@@ -44,6 +46,20 @@ using depth::depth_method_names;
 using depth::DepthMethod;
 using depth::MethodScan;
 using depth::register_depth_method;
+// The pattern-family seam (the same page): a PatternFamily (its patterns, images and manifest entries) and its
+// DecodingFamily (how its frames stream into T), each registered; `patterns`, `simulate`, `capture`, `transport` and
+// the manifest reader then take the family by name.
+using capture::Pattern;
+using capture::pattern_family_names;
+using capture::PatternFamily;
+using capture::ProtocolOptions;
+using capture::register_pattern_family;
+using transport::DecodingFamily;
+using transport::kFinishStep;
+using transport::register_decoding_family;
+using transport::TransportAccumulator;
+using transport::TransportRefinement;
+using transport::TransportStep;
 // A tuning option of ReconstructOptions by its command-line name ("crease", "sigma-step": docs/cli.md), checked
 // against its documented range (UsageError naming it otherwise); depth_option_table() lists them.
 using depth::depth_option_table;
@@ -110,10 +126,11 @@ class Capture {
   std::function<cv::Mat(std::size_t)> frame_;  // the others
 };
 
-// The protocol's manifest for a rig (white, black, Gray code of both axes with inverses, then the dot grid of
-// `dot_spacing`, 0 for none), frames named as `rfrecon patterns` names them (000_white.png, ...), with the camera's
-// fields.
-Manifest make_manifest(cv::Size projector_size, cv::Size camera_size, int bit_depth = 8, int dot_spacing = 8);
+// The manifest of `family`'s sequence for a rig (graycode: white, black, Gray code of both axes with inverses, then the
+// dot grid of `dot_spacing`, 0 for none), frames named as `rfrecon patterns` names them (000_white.png, ...), with the
+// camera's fields. InputError for an unknown family or an option it does not take.
+Manifest make_manifest(cv::Size projector_size, cv::Size camera_size, int bit_depth = 8, int dot_spacing = 8,
+                       const std::string& family = capture::kDefaultFamily);
 // The image to show on the projector for frame `index` of `manifest` (CV_8U, projector size).
 cv::Mat pattern_image(const Manifest& manifest, std::size_t index);
 

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 
+#include "host/capture/pattern_family.h"
 #include "host/core/errors.h"
 #include "host/core/json_file.h"
 #include "host/core/message_text.h"
@@ -185,6 +186,11 @@ Scene resolve_scene(const std::string& name_or_file, const SceneChanges& changes
   if (!changes.camera_size.empty()) resize_device(scene.camera, changes.camera_size);
   if (!changes.projector_size.empty()) resize_device(scene.projector, changes.projector_size);
   if (changes.supersample) scene.render.supersample = *changes.supersample;
+  if (!changes.family.empty()) {
+    (void)capture::pattern_family(changes.family);  // InputError listing the families for an unknown one
+    scene.capture.family = changes.family;
+    if (changes.family != capture::kDefaultFamily) scene.capture.dot_spacing = 0;
+  }
   if (changes.dot_spacing) {
     if (*changes.dot_spacing == 1) throw InputError("--dot-spacing must be 0 (Gray code only) or at least 2");
     scene.capture.dot_spacing = *changes.dot_spacing;

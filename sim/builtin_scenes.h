@@ -33,6 +33,7 @@ struct SceneChanges {
   cv::Size camera_size;                    // the camera's resolution, its field of view kept
   cv::Size projector_size;                 // the same for the projector
   std::optional<int> supersample;          // rays per pixel side
+  std::string family;                      // a pattern family; other than graycode, the dot spacing is 0 unless given
   std::optional<int> dot_spacing;          // 0 (Gray code only) or at least 2: InputError for 1
   std::optional<unsigned long long> seed;  // the frames' noise seed
 };

@@ -54,6 +54,7 @@ cv::Mat camera_reading(const cv::Mat& linear, const CaptureSettings& s, std::uin
 
 capture::CaptureManifest make_manifest(const CaptureSettings& s, cv::Size camera_size, cv::Size projector_size) {
   capture::CaptureManifest manifest;
+  manifest.family = s.family;
   manifest.projector_size = projector_size;
   manifest.camera_size = camera_size;
   manifest.dot_spacing = s.dot_spacing;
@@ -62,7 +63,8 @@ capture::CaptureManifest make_manifest(const CaptureSettings& s, cv::Size camera
   char gamma[32];
   std::snprintf(gamma, sizeof gamma, "gamma:%.17g", s.response_gamma);
   manifest.camera_response = s.response_gamma == 1.0 ? "linear" : gamma;
-  manifest.frames = capture::protocol_frames({projector_size, s.dot_spacing}, s.format == "tiff" ? ".tiff" : ".png");
+  manifest.frames =
+      capture::protocol_frames(capture::protocol_options(manifest), s.format == "tiff" ? ".tiff" : ".png");
   return manifest;
 }
 
@@ -77,7 +79,7 @@ void write_capture(const TransportMatrix& T, const CaptureSettings& settings, cv
     for (std::size_t i = next++; i < manifest.frames.size(); i = next++) {
       try {
         const auto& frame = manifest.frames[i];
-        const cv::Mat pattern = capture::render_pattern(frame.pattern, projector_size, settings.dot_spacing);
+        const cv::Mat pattern = capture::render_pattern(frame.pattern, capture::protocol_options(manifest));
         const cv::Mat raw = camera_reading(transport_image(T, pattern, camera_size), settings, seed, i);
         const fs::path path = capture_dir / frame.file;
         if (!cv::imwrite(path.string(), raw))

@@ -27,7 +27,8 @@ struct RenderOptions {
 
 // How pattern frames are turned into camera readings (docs/sim.md, "Noise model").
 struct CaptureSettings {
-  int dot_spacing = 8;                   // s of the s x s dot grid; 0 = Gray code, white and black only
+  std::string family = "graycode";       // the pattern family (host/capture/pattern_family.h)
+  int dot_spacing = 8;                   // graycode: s of the s x s dot grid; 0 = Gray code, white and black only
   int bit_depth = 10;                    // 8, 10, 12 or 16
   double black_level = 16.0;             // digital numbers added to every reading
   double response_gamma = 1.0;           // reading = linear^(1/gamma); 1 = linear

@@ -1,7 +1,9 @@
 // Scene JSON: parsing with validation errors that name the field path, and serialisation of the resolved scene.
+#include <algorithm>
 #include <cmath>
 #include <set>
 
+#include "host/capture/pattern_family.h"
 #include "host/core/errors.h"
 #include "host/core/json_file.h"
 #include "host/core/message_text.h"
@@ -292,9 +294,16 @@ json object_to_json(const Object& o) {
 
 CaptureSettings parse_capture(const Reader& r, const json& j, const std::string& path) {
   r.check_keys(j, path,
-               {"dot_spacing", "bit_depth", "black_level", "response_gamma", "ambient", "full_well_electrons",
+               {"family", "dot_spacing", "bit_depth", "black_level", "response_gamma", "ambient", "full_well_electrons",
                 "read_noise_dn", "format"});
   CaptureSettings c;
+  c.family = r.get<std::string>(j, path, "family", c.family);
+  const auto families = capture::pattern_family_names();
+  if (std::find(families.begin(), families.end(), c.family) == families.end()) {
+    std::string names;
+    for (const auto& name : families) names += (names.empty() ? "" : ", ") + name;
+    r.fail(Reader::join(path, "family"), "must be a pattern family (" + names + ")");
+  }
   c.dot_spacing = r.get<int>(j, path, "dot_spacing", c.dot_spacing);
   if (c.dot_spacing < 0 || c.dot_spacing == 1) r.fail(Reader::join(path, "dot_spacing"), "must be 0 or >= 2");
   c.bit_depth = r.get<int>(j, path, "bit_depth", c.bit_depth);
@@ -397,7 +406,8 @@ json scene_to_json(const Scene& scene) {
             {"projector", device_to_json(scene.projector, true)},
             {"radiometry", {{"gain", scene.gain}, {"intensity", scene.intensity}}},
             {"capture",
-             {{"dot_spacing", c.dot_spacing},
+             {{"family", c.family},
+              {"dot_spacing", c.dot_spacing},
               {"bit_depth", c.bit_depth},
               {"black_level", c.black_level},
               {"response_gamma", c.response_gamma},

@@ -10,6 +10,7 @@
 #include "host/acquire/frame_checks.h"
 #include "host/acquire/hdr_merge.h"
 #include "host/acquire/latency.h"
+#include "host/capture/graycode_patterns.h"
 #include "host/capture/pattern_files.h"
 #include "host/core/atomic_file.h"
 #include "host/core/errors.h"
@@ -45,6 +46,7 @@ cv::Size protocol_size(const Projector& projector, const CaptureRunOptions& opti
 capture::CaptureManifest scan_manifest(const Camera& camera, const CaptureRunOptions& options, cv::Size projector) {
   const CameraFormat format = camera.format();
   capture::CaptureManifest manifest;
+  manifest.family = options.protocol.family;
   manifest.projector_size = projector;
   manifest.camera_size = format.size;
   manifest.dot_spacing = options.protocol.dot_spacing;
@@ -52,13 +54,13 @@ capture::CaptureManifest scan_manifest(const Camera& camera, const CaptureRunOpt
   manifest.black_level = options.black_level_dn.value_or(format.black_level_dn);
   manifest.camera_response = options.camera_response;
   manifest.frames =
-      capture::protocol_frames({projector, options.protocol.dot_spacing}, options.format == "tiff" ? ".tiff" : ".png");
+      capture::protocol_frames(capture::protocol_options(manifest), options.format == "tiff" ? ".tiff" : ".png");
   capture::validate_manifest(manifest, "capture of " + camera.name());
   return manifest;
 }
 
 std::string pattern_words(const capture::Pattern& pattern) {
-  std::string words = capture::to_string(pattern.kind);
+  std::string words = pattern.kind;
   if (pattern.bit >= 0) words += " bit " + std::to_string(pattern.bit) + (pattern.inverse ? " inverse" : "");
   return words;
 }
@@ -93,13 +95,12 @@ class ScanRecorder {
     for (std::size_t i = 0; i < frames.size(); ++i) {
       const auto& pattern = frames[i].pattern;
       cv::Mat frame = capture_pattern(pattern);
-      if (pattern.kind == capture::PatternKind::kWhite) white = linear(frame);
-      if (pattern.kind == capture::PatternKind::kBlack) {
+      if (pattern.kind == capture::pattern_kind::kWhite) white = linear(frame);
+      if (pattern.kind == capture::pattern_kind::kBlack) {
         black = linear(frame);
         check_white_over_black(white, black);
       }
-      const bool gray =
-          pattern.kind == capture::PatternKind::kGrayColumn || pattern.kind == capture::PatternKind::kGrayRow;
+      const bool gray = capture::is_gray(pattern);
       if (gray && !pattern.inverse) {
         pair[0] = frame;
         continue;
@@ -173,7 +174,7 @@ class ScanRecorder {
     if (options_.before_pattern) options_.before_pattern();
     cv::Mat image(projector_.size(), CV_8UC1, cv::Scalar(0));
     const cv::Size size = camera_manifest_.projector_size;
-    capture::render_pattern(pattern, size, camera_manifest_.dot_spacing).copyTo(image(cv::Rect({0, 0}, size)));
+    capture::render_pattern(pattern, capture::protocol_options(camera_manifest_)).copyTo(image(cv::Rect({0, 0}, size)));
     projector_.show(image);
     if (options_.exposures_us.size() <= 1) return fresh_frame(pattern);
     std::vector<cv::Mat> raw;

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "host/capture/frame_read_ahead.h"
+#include "host/capture/graycode_patterns.h"
 #include "host/core/errors.h"
 #include "host/core/percentile.h"
 
@@ -69,7 +70,7 @@ double declared_gamma(const CaptureManifest& manifest) {
 }
 
 std::string pattern_name(const Pattern& pattern) {
-  return std::string(pattern.kind == PatternKind::kGrayColumn ? "column" : "row") + " bit " +
+  return std::string(pattern.kind == pattern_kind::kGrayColumn ? "column" : "row") + " bit " +
          std::to_string(pattern.bit);
 }
 
@@ -134,23 +135,16 @@ Roles roles_of(const CaptureManifest& manifest) {
   Roles roles;
   for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
     const Pattern& pattern = manifest.frames[i].pattern;
-    switch (pattern.kind) {
-      case PatternKind::kWhite:
-        roles.white = i;
-        break;
-      case PatternKind::kBlack:
-        roles.black = i;
-        break;
-      case PatternKind::kGrayColumn:
-      case PatternKind::kGrayRow: {
-        const int axis = pattern.kind == PatternKind::kGrayColumn ? 0 : 1;
-        auto& pair = roles.pairs.try_emplace({axis, pattern.bit}, SIZE_MAX, SIZE_MAX).first->second;
-        (pattern.inverse ? pair.second : pair.first) = i;
-        break;
-      }
-      case PatternKind::kDot:
-        roles.dots.push_back(i);
-        break;
+    if (pattern.kind == pattern_kind::kWhite) {
+      roles.white = i;
+    } else if (pattern.kind == pattern_kind::kBlack) {
+      roles.black = i;
+    } else if (is_gray(pattern)) {
+      const int axis = pattern.kind == pattern_kind::kGrayColumn ? 0 : 1;
+      auto& pair = roles.pairs.try_emplace({axis, pattern.bit}, SIZE_MAX, SIZE_MAX).first->second;
+      (pattern.inverse ? pair.second : pair.first) = i;
+    } else if (pattern.kind == pattern_kind::kDot) {
+      roles.dots.push_back(i);
     }
   }
   return roles;

@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "host/capture/graycode_patterns.h"
+#include "host/capture/pattern_family.h"
 #include "host/core/atomic_file.h"
 #include "host/core/errors.h"
 #include "host/core/image_file.h"
@@ -43,14 +45,18 @@ double response_gamma(const std::string& response, const std::string& file) {
 
 json size_to_json(cv::Size size) { return json::array({size.width, size.height}); }
 
-json frame_to_json(const Frame& frame) {
-  json item{{"file", frame.file}, {"pattern", to_string(frame.pattern.kind)}};
-  if (frame.pattern.kind == PatternKind::kGrayColumn || frame.pattern.kind == PatternKind::kGrayRow) {
-    item["bit"] = frame.pattern.bit;
-    item["inverse"] = frame.pattern.inverse;
-  } else if (frame.pattern.kind == PatternKind::kDot) {
-    item["dot_offset"] = json::array({frame.pattern.dot_offset_x, frame.pattern.dot_offset_y});
+// The registered family of that name; InputError starting with `where` listing the families otherwise.
+const PatternFamily& family_of(const std::string& name, const std::string& where) {
+  try {
+    return pattern_family(name);
+  } catch (const InputError& error) {
+    throw InputError(where + ": family: " + error.what());
   }
+}
+
+json frame_to_json(const Frame& frame, const PatternFamily& family) {
+  json item{{"file", frame.file}, {"pattern", frame.pattern.kind}};
+  family.write_entry(frame.pattern, item);
   return item;
 }
 
@@ -105,28 +111,20 @@ void check_frame_path(const std::string& name, const fs::path& dir, FramePaths p
   }
 }
 
-Frame frame_from_json(const json& item, std::size_t index, const fs::path& file) {
+Frame frame_from_json(const json& item, std::size_t index, const PatternFamily& family, const fs::path& file) {
   const std::string where = "frames[" + std::to_string(index) + "].";
   Frame frame;
   frame.file = field<std::string>(item, "file", where, file);
-  try {
-    frame.pattern.kind = pattern_kind_from_string(field<std::string>(item, "pattern", where, file));
-  } catch (const InputError& error) {
-    throw InputError(file.string() + ": " + where + "pattern: " + error.what());
-  }
-  if (frame.pattern.kind == PatternKind::kGrayColumn || frame.pattern.kind == PatternKind::kGrayRow) {
-    frame.pattern.bit = field<int>(item, "bit", where, file);
-    frame.pattern.inverse = field<bool>(item, "inverse", where, file);
-  } else if (frame.pattern.kind == PatternKind::kDot) {
-    const auto offset = field<std::vector<int>>(item, "dot_offset", where, file);
-    if (offset.size() != 2) throw InputError(file.string() + ": " + where + "dot_offset must be [x, y]");
-    frame.pattern.dot_offset_x = offset[0];
-    frame.pattern.dot_offset_y = offset[1];
-  }
+  frame.pattern.kind = field<std::string>(item, "pattern", where, file);
+  family.read_entry(item, file.string() + ": frames[" + std::to_string(index) + "]", frame.pattern);
   return frame;
 }
 
 }  // namespace
+
+ProtocolOptions protocol_options(const CaptureManifest& manifest) {
+  return {manifest.projector_size, manifest.dot_spacing, manifest.family};
+}
 
 void validate_manifest(const CaptureManifest& manifest, const std::string& where) {
   const auto fail = [&](const std::string& what) { throw InputError(where + ": " + what); };
@@ -140,63 +138,19 @@ void validate_manifest(const CaptureManifest& manifest, const std::string& where
   if (manifest.black_level < 0 || manifest.black_level >= full_scale) {
     fail("black_level must be in [0, " + std::to_string(full_scale) + ")");
   }
-  if (manifest.dot_spacing < 0 || manifest.dot_spacing == 1 || manifest.dot_spacing > kMaxDotSpacing) {
-    fail("dot_spacing must be 0 or 2 to " + std::to_string(kMaxDotSpacing));
-  }
   (void)response_gamma(manifest.camera_response, where);
   for (double exposure : manifest.exposures_us) {
     if (!(exposure > 0.0 && std::isfinite(exposure))) fail("exposures_us must hold positive microseconds");
   }
-  std::map<PatternKind, int> plain_count;
-  std::set<std::tuple<int, int, bool>> gray_seen;
-  std::set<std::pair<int, int>> dots_seen;
-  const int column_bits = gray_bits(manifest.projector_size.width);
-  const int row_bits = gray_bits(manifest.projector_size.height);
-  for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
-    const auto& pattern = manifest.frames[i].pattern;
-    const std::string where = "frames[" + std::to_string(i) + "] (" + excerpt(manifest.frames[i].file) + "): ";
-    switch (pattern.kind) {
-      case PatternKind::kWhite:
-      case PatternKind::kBlack:
-        ++plain_count[pattern.kind];
-        break;
-      case PatternKind::kGrayColumn:
-      case PatternKind::kGrayRow: {
-        const bool columns = pattern.kind == PatternKind::kGrayColumn;
-        const int bits = columns ? column_bits : row_bits;
-        if (pattern.bit < 0 || pattern.bit >= bits) {
-          fail(where + "Gray code bit " + std::to_string(pattern.bit) + " does not exist for a projector " +
-               (columns ? "width of " + std::to_string(manifest.projector_size.width)
-                        : "height of " + std::to_string(manifest.projector_size.height)) +
-               " (" + std::to_string(bits) + " bits)");
-        }
-        if (!gray_seen.insert({columns ? 0 : 1, pattern.bit, pattern.inverse}).second) fail(where + "repeated frame");
-        break;
-      }
-      case PatternKind::kDot:
-        if (manifest.dot_spacing == 0) fail(where + "dot frame but dot_spacing is 0");
-        if (pattern.dot_offset_x < 0 || pattern.dot_offset_x >= manifest.dot_spacing || pattern.dot_offset_y < 0 ||
-            pattern.dot_offset_y >= manifest.dot_spacing) {
-          fail(where + "dot_offset outside [0, dot_spacing)");
-        }
-        if (!dots_seen.insert({pattern.dot_offset_x, pattern.dot_offset_y}).second) fail(where + "repeated frame");
-        break;
-    }
-  }
-  if (plain_count[PatternKind::kWhite] != 1 || plain_count[PatternKind::kBlack] != 1) {
+  const PatternFamily& family = family_of(manifest.family, where);
+  const auto count = [&](const char* kind) {
+    return std::count_if(manifest.frames.begin(), manifest.frames.end(),
+                         [&](const Frame& frame) { return frame.pattern.kind == kind; });
+  };
+  if (count(pattern_kind::kWhite) != 1 || count(pattern_kind::kBlack) != 1) {
     fail("needs exactly one white and one black frame");
   }
-  if (gray_seen.size() != 2 * static_cast<std::size_t>(column_bits + row_bits)) {
-    fail("incomplete Gray code: " + std::to_string(gray_seen.size()) + " of " +
-         std::to_string(2 * (column_bits + row_bits)) + " frames for a " +
-         std::to_string(manifest.projector_size.width) + "x" + std::to_string(manifest.projector_size.height) +
-         " projector");
-  }
-  if (dots_seen.size() !=
-      static_cast<std::size_t>(manifest.dot_spacing) * static_cast<std::size_t>(manifest.dot_spacing)) {
-    fail("incomplete dot grid: " + std::to_string(dots_seen.size()) + " of " +
-         std::to_string(manifest.dot_spacing * manifest.dot_spacing) + " frames");
-  }
+  family.validate(manifest, where);
 }
 
 namespace {
@@ -245,17 +199,19 @@ CaptureManifest read_manifest(const fs::path& capture_dir, FramePaths frame_path
   CaptureManifest manifest;
   manifest.projector_size = size_field(root, "projector_size", file);
   manifest.camera_size = root.contains("camera_size") ? size_field(root, "camera_size", file) : cv::Size();
+  manifest.family = optional_field(root, "family", std::string(kDefaultFamily), file);
   manifest.dot_spacing = optional_field(root, "dot_spacing", 0, file);
   manifest.bit_depth = optional_field(root, "bit_depth", 8, file);
   manifest.black_level = optional_field(root, "black_level", 0.0, file);
   manifest.camera_response = optional_field(root, "camera_response", std::string("linear"), file);
   manifest.exposures_us = optional_field(root, "exposures_us", std::vector<double>{}, file);
+  const PatternFamily& family = family_of(manifest.family, file.string());
   const auto frames = field<json>(root, "frames", "", file);
   if (!frames.is_array()) throw InputError(file.string() + ": field 'frames' must be an array");
   for (std::size_t i = 0; i < frames.size(); ++i) {
     if (!frames[i].is_object())
       throw InputError(file.string() + ": frames[" + std::to_string(i) + "] is not an object");
-    manifest.frames.push_back(frame_from_json(frames[i], i, file));
+    manifest.frames.push_back(frame_from_json(frames[i], i, family, file));
     check_frame_path(manifest.frames.back().file, capture_dir, frame_paths, "frames[" + std::to_string(i) + "].", file);
   }
   validate_manifest(manifest, file.string());
@@ -270,10 +226,12 @@ std::vector<fs::path> capture_files(const fs::path& capture_dir, const CaptureMa
 }
 
 void write_manifest(const CaptureManifest& manifest, const fs::path& capture_dir) {
+  const PatternFamily& family = pattern_family(manifest.family);
   json frames = json::array();
-  for (const auto& frame : manifest.frames) frames.push_back(frame_to_json(frame));
+  for (const auto& frame : manifest.frames) frames.push_back(frame_to_json(frame, family));
   json root{{"format", "rfrecon-capture"},
             {"version", kManifestVersion},
+            {"family", manifest.family},
             {"projector_size", size_to_json(manifest.projector_size)},
             {"camera_size", size_to_json(manifest.camera_size)},
             {"dot_spacing", manifest.dot_spacing},

@@ -22,14 +22,18 @@ struct Frame {
 
 struct CaptureManifest {
   cv::Size projector_size;
+  std::string family = kDefaultFamily;     // the pattern family (host/capture/pattern_family.h)
   cv::Size camera_size;                    // {0, 0} in a projector-side (patterns) manifest
-  int dot_spacing = 0;                     // 0 when there is no dot grid
+  int dot_spacing = 0;                     // the graycode family's dot grid; 0 when there is none
   int bit_depth = 8;                       // bits per camera sample: 8, 10, 12 or 16 (stored in 8- or 16-bit files)
   double black_level = 0.0;                // camera reading with no light, in digital numbers
   std::string camera_response = "linear";  // "linear" or "gamma:<g>" (reading = linear^(1/g))
   std::vector<double> exposures_us;        // as captured: one exposure, or several merged into each frame (HDR)
   std::vector<Frame> frames;
 };
+
+// The options that made the manifest's sequence: its projector size, family and dot spacing.
+ProtocolOptions protocol_options(const CaptureManifest& manifest);
 
 // Where a manifest's frames may lie: inside the capture directory (relative paths without "..", links that stay
 // inside), or anywhere (`--allow-outside-frames`).
@@ -41,9 +45,10 @@ enum class FramePaths { kInsideCapture, kAnywhere };
 CaptureManifest read_manifest(const std::filesystem::path& capture_dir,
                               FramePaths frame_paths = FramePaths::kInsideCapture);
 
-// Checks that the frames form a complete protocol for the projector size (one white, one black, every Gray code bit
-// of both axes with its inverse, with a dot grid every offset once) and that the values are in range; throws
-// InputError starting with `where` (the manifest's file or the frame source's name). read_manifest calls it.
+// Checks that the values are in range and that the frames form the family's complete sequence for the projector size
+// (one white, one black, and what the family's validate asks: for graycode every Gray code bit of both axes with its
+// inverse and, with a dot grid, every offset once); throws InputError starting with `where` (the manifest's file or
+// the frame source's name). read_manifest calls it.
 void validate_manifest(const CaptureManifest& manifest, const std::string& where);
 
 // The files reading the capture touches: DIR/manifest.json (when there is one) and every frame. Outputs are checked

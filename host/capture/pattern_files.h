@@ -10,9 +10,10 @@
 
 namespace rfrecon::capture {
 
-// The file of frame `index` of a capture: "007_gray_col_b02_inv.png", "040_dot_03_05.png", "000_white.png" (the
-// sequence number keeps name order equal to projection order). `extension` includes the dot.
-std::string pattern_file_name(std::size_t index, const Pattern& pattern, const std::string& extension = ".png");
+// The file of frame `index` of a capture of `family`: "007_gray_col_b02_inv.png", "040_dot_03_05.png",
+// "000_white.png" (the sequence number keeps name order equal to projection order). `extension` includes the dot.
+std::string pattern_file_name(std::size_t index, const Pattern& pattern, const std::string& family = kDefaultFamily,
+                              const std::string& extension = ".png");
 
 // The frames of make_protocol(protocol), each with its pattern_file_name: a manifest's frame list.
 std::vector<Frame> protocol_frames(const ProtocolOptions& protocol, const std::string& extension = ".png");

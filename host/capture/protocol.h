@@ -1,4 +1,5 @@
-// The projector pattern sequence of a capture: white, black, Gray code (columns, rows) with inverses, dot grid.
+// A capture's projector pattern sequence: its patterns, the options that make one, and their images, through the
+// pattern family the capture uses (host/capture/pattern_family.h).
 #pragma once
 
 #include <string>
@@ -8,44 +9,43 @@
 
 namespace rfrecon::capture {
 
-enum class PatternKind { kWhite, kBlack, kGrayColumn, kGrayRow, kDot };
+// The manifest's names of the patterns the built-in families project. Every family has one white and one black
+// frame; the other kinds are the family's own (families may share them: a phase-shifting family unwraps with Gray
+// code).
+namespace pattern_kind {
+inline constexpr const char* kWhite = "white";
+inline constexpr const char* kBlack = "black";
+inline constexpr const char* kGrayColumn = "gray_col";
+inline constexpr const char* kGrayRow = "gray_row";
+inline constexpr const char* kDot = "dot";
+}  // namespace pattern_kind
 
 // One projector image of the sequence.
 struct Pattern {
-  PatternKind kind = PatternKind::kWhite;
-  int bit = -1;           // Gray code: bit index, 0 = most significant
-  bool inverse = false;   // Gray code: the inverted image of the pair
+  std::string kind = pattern_kind::kWhite;
+  int bit = -1;           // code patterns: bit index, 0 = most significant
+  bool inverse = false;   // code patterns: the inverted image of the pair
   int dot_offset_x = -1;  // dot grid: lit pixels have x % spacing == dot_offset_x ...
   int dot_offset_y = -1;  // ... and y % spacing == dot_offset_y
 };
 
-inline constexpr int kMaxDotSpacing = 64;  // s x s = 4096 dot frames at most
+// The family of captures whose manifest names none: Gray code with a dot grid (host/capture/graycode_patterns.h).
+inline constexpr const char* kDefaultFamily = "graycode";
 
 struct ProtocolOptions {
   cv::Size projector_size;  // projector resolution in pixels
   int dot_spacing = 0;      // s of the s x s dot-grid scan; 0 = no dot grid (Gray code only)
+  std::string family = kDefaultFamily;
 };
 
-// Number of Gray code bits for a projector axis of n pixels: ceil(log2(n)), as OpenCV's GrayCodePattern.
-int gray_bits(int n);
-
-// The standard rfrecon protocol: white, black, then for each column bit (MSB first) the pattern and its inverse,
-// then the same for rows (OpenCV GrayCodePattern order), then dot frames with offset (ox, oy), ox fastest.
+// The sequence of `options.family` (throws InputError for an unknown family, a projector under 2x2 or an option the
+// family does not take).
 std::vector<Pattern> make_protocol(const ProtocolOptions& options);
 
-// OpenCV GrayCodePattern's capture order: its Gray code images (columns then rows, each pattern then inverse),
-// then one white and one black frame.
-std::vector<Pattern> opencv_graycode_protocol(cv::Size projector_size);
+// The projector image of a pattern of `options.family`: CV_8UC1, 255 = lit, 0 = dark.
+cv::Mat render_pattern(const Pattern& pattern, const ProtocolOptions& options);
 
-// The projector image of a pattern: CV_8UC1, 255 = lit, 0 = dark. Identical to OpenCV GrayCodePattern::generate()
-// for Gray code frames.
-cv::Mat render_pattern(const Pattern& pattern, cv::Size projector_size, int dot_spacing);
-
-// The Gray code value of projector coordinate `coordinate` for bit `bit` (MSB first) of an axis with `bits` bits.
-bool gray_code_bit(int coordinate, int bit, int bits);
-
-// Stable names for manifests and logs: "white", "black", "gray_col", "gray_row", "dot".
-const char* to_string(PatternKind kind);
-PatternKind pattern_kind_from_string(const std::string& name);  // throws InputError on an unknown name
+// Throws InputError unless the projector is at least 2x2 and within host/core/limits.h.
+void check_projector_size(cv::Size projector_size);
 
 }  // namespace rfrecon::capture

@@ -10,6 +10,7 @@
 
 #include "host/cli/commands.h"
 #include "host/cli/number_checks.h"
+#include "host/cli/protocol_option.h"
 #include "host/cli/size_option.h"
 #include "host/core/errors.h"
 #include "host/drivers/aravis_camera.h"
@@ -22,6 +23,7 @@ namespace {
 
 struct CaptureCommandOptions {
   pipeline::CaptureRequest request;
+  std::shared_ptr<capture::ProtocolOptions> protocol = std::make_shared<capture::ProtocolOptions>();
   std::string projector_size;
   std::string pose_wait = "enter";
   int timeout_ms = 2000;
@@ -74,6 +76,8 @@ void run_capture(CaptureCommandOptions& o) {
   request.seed = o.seed;
   request.run.black_level_dn = o.black_level;
   request.run.timeout = std::chrono::milliseconds(o.timeout_ms);
+  request.run.protocol.family = o.protocol->family;
+  request.run.protocol.dot_spacing = o.protocol->dot_spacing;
   if (!o.projector_size.empty()) request.run.protocol.projector_size = parse_size(o.projector_size, "--projector-size");
   if (o.measure_latency) {
     const int frames = pipeline::measure_latency(request);
@@ -102,9 +106,7 @@ void add_capture_command(CLI::App& app) {
   command->add_option("--camera", r.camera, "aravis[:ID] | v4l2:DEVICE | gst:PIPELINE | sim:SCENE");
   command->add_option("--projector", r.projector, "display:N: SDL2's display N, full screen (--list-displays)");
   command->add_option("--projector-size", o->projector_size, "Pattern size WxH (default: the display's size)");
-  command->add_option("--dot-spacing", r.run.protocol.dot_spacing, "Dot grid spacing s; 0 = Gray code only")
-      ->check(zero_or_range(2, capture::kMaxDotSpacing, "Gray code only"))
-      ->default_val(8);
+  add_protocol_options(*command, o->protocol);
   command
       ->add_option("--exposures", r.run.exposures_us,
                    "Exposure times in microseconds; several are merged per pattern (HDR)")

@@ -4,7 +4,8 @@
 
 #include <spdlog/spdlog.h>
 
-#include "host/capture/protocol.h"
+#include "host/capture/graycode_patterns.h"
+#include "host/capture/pattern_family.h"
 #include "host/cli/commands.h"
 #include "host/cli/number_checks.h"
 #include "host/cli/size_option.h"
@@ -25,6 +26,7 @@ struct SimulateCommandOptions {
   std::string camera_size;
   std::string projector_size;
   std::optional<int> supersample;
+  std::string family;
   std::optional<int> dot_spacing;
   int threads = 0;
 };
@@ -44,6 +46,7 @@ void run_simulate(const SimulateCommandOptions& o) {
   if (!o.camera_size.empty()) changes.camera_size = parse_size(o.camera_size, "--camera");
   if (!o.projector_size.empty()) changes.projector_size = parse_size(o.projector_size, "--projector");
   changes.supersample = o.supersample;
+  changes.family = o.family;
   changes.dot_spacing = o.dot_spacing;
   changes.seed = o.seed;
   const sim::Scene scene = sim::resolve_scene(o.scene, changes);
@@ -68,6 +71,8 @@ void add_simulate_command(CLI::App& app) {
   command->add_option("--projector", o->projector_size, "Projector resolution WxH (keeps the field of view)");
   command->add_option("--supersample", o->supersample, "Sub-pixel rays per camera pixel side (default: scene's, 4)")
       ->check(CLI::Range(1, 32));
+  command->add_option("--family", o->family, "Pattern family of the capture (default: the scene's, graycode)")
+      ->check(CLI::IsMember(capture::pattern_family_names()));
   command
       ->add_option("--dot-spacing", o->dot_spacing,
                    "Dot grid spacing s of the capture; 0 = Gray code, white and black only (default: the scene's)")

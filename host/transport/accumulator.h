@@ -1,61 +1,37 @@
-// Streams capture frames into a compressed T: Gray code pairs, then white/black, then dot frames, one at a time.
-// Two implementations share this interface: the plain C++ reference and the OpenCL kernels on one device.
+// Streams a capture's frames into a compressed T, one step at a time, as the capture's decoding family plans them
+// (host/transport/decoding_family.h). Implementations: each family's plain C++ reference and its OpenCL kernels.
 #pragma once
 
-#include <memory>
-#include <string>
+#include <array>
+#include <cstddef>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
-#include "host/cl/device_context.h"
-#include "host/cl/program_cache.h"
 #include "host/transport/transport_types.h"
 
 namespace rfrecon::transport {
 
-enum class GrayAxis { kColumns, kRows };
+// The op of the step that ends a capture: finish() returns T.
+inline constexpr int kFinishStep = -1;
 
-// Frames are camera images of setup.camera_size: white and black linear CV_32F (host/capture/manifest.h load_frame),
-// Gray and dot frames of setup.frame_depth (linear CV_32F, or raw samples that setup.samples makes linear).
-// Call order: add_gray_pair for every pair (any order), finish_gray, add_dot_frame for every offset, finish.
+// One call on an accumulator: the frames it takes and what the family does with them.
+struct TransportStep {
+  int op = kFinishStep;             // the family's operation (e.g. a Gray code pair, a dot frame)
+  std::vector<std::size_t> frames;  // indices into the manifest's frames, in the order the operation takes them
+  std::array<int, 2> args{};        // the operation's arguments (e.g. axis and bit, a dot's offset)
+  const char* stage = "finalize";   // the timing stage; consecutive steps of one stage share a kernel launch
+};
+
 class TransportAccumulator {
  public:
   virtual ~TransportAccumulator() = default;
-  // One Gray code pair; `bit` counts from the most significant (OpenCV order).
-  virtual void add_gray_pair(GrayAxis axis, int bit, const cv::Mat& pattern, const cv::Mat& inverse) = 0;
-  // Shadow mask from white/black, Gray -> binary, range check. Keeps black for the dot frames.
-  virtual void finish_gray(const cv::Mat& white, const cv::Mat& black) = 0;
-  // One dot-grid frame lighting projector pixels with x % s == offset_x and y % s == offset_y.
-  virtual void add_dot_frame(int offset_x, int offset_y, const cv::Mat& frame) = 0;
-  // Correspondences (and the single entry of Gray-only captures); returns the whole compressed T.
+  // One step but the last: `frames` are its frames (camera images of setup.camera_size, of setup.frame_depth: linear
+  // CV_32F or raw samples that setup.samples makes linear); white and black are the capture's, linear CV_32F.
+  virtual void add(const TransportStep& step, const std::vector<cv::Mat>& frames, const cv::Mat& white,
+                   const cv::Mat& black) = 0;
+  // After the last step: the whole compressed T.
   virtual CompressedTransport finish() = 0;
 };
-
-// The bit mask of Gray bit `bit` (0 = most significant) in an axis code word.
-std::uint32_t gray_bit_mask(const TransportSetup& setup, GrayAxis axis, int bit);
-
-// The binary number of a Gray code word.
-std::uint32_t gray_to_binary(std::uint32_t gray);
-
-// A dot frame's offsets lie in [0, s), as host/capture/protocol.h makes them; std::invalid_argument otherwise.
-void check_dot_offsets(const TransportSetup& setup, int offset_x, int offset_y);
-
-// The kernels support the dot spacings of RF_DOT_SPACINGS (kernels/common/params.h, fixed in a board binary); any
-// other spacing but 0 (Gray code only) is a ProcessingError naming it and the supported ones.
-void check_kernel_dot_spacing(int dot_spacing);
-
-// Automatic white and noise thresholds (<= 0) are resolved for an 8-bit camera here; compute_transport
-// resolves them for the capture's bit depth before it makes an accumulator.
-std::unique_ptr<TransportAccumulator> make_reference_accumulator(TransportSetup setup);
-
-// Kernels of kernels/transport/decode.cl and compress.cl; the ELL state stays on the device until finish(). Dot
-// frames are compressed RF_FRAME_BATCH at a time (the last batch at finish()), Gray pairs decoded RF_GRAY_PAIR_BATCH
-// at a time (the last batch at finish_gray()). Raw frames are made linear in the NDRange kernels, on the host for the
-// single work-item ones. build_options are added to the programs' (tests build the single work-item entries with an
-// FPGA target macro on PoCL). `storage`: an earlier transport whose memory the state reuses (make_empty_decoding).
-std::unique_ptr<TransportAccumulator> make_device_accumulator(TransportSetup setup, cl::DeviceContext& device,
-                                                              cl::ProgramCache& programs, KernelEntry entry,
-                                                              const std::string& build_options = {},
-                                                              CompressedTransport storage = {});
 
 }  // namespace rfrecon::transport

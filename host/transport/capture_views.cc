@@ -31,7 +31,7 @@ CaptureViews view_capture(const capture::FrameSource& frames, const capture::Cap
   const auto& transport = run.transport;
 
   for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
-    if (manifest.frames[i].pattern.kind == capture::PatternKind::kWhite) {
+    if (manifest.frames[i].pattern.kind == capture::pattern_kind::kWhite) {
       auto with_size = manifest;
       with_size.camera_size = transport.setup.camera_size;
       views.camera_image = frames.load(with_size, i);

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <map>
 #include <optional>
+#include <string_view>
 #include <utility>
 
 #include "host/capture/frame_read_ahead.h"
@@ -12,13 +13,11 @@
 #include "host/core/progress.h"
 #include "host/core/stage_clock.h"
 #include "host/sched/block_runner.h"
-#include "host/transport/gray_decision.h"
-#include "host/transport/gray_subpixel.h"
+#include "host/transport/decoding_family.h"
 
 namespace rfrecon::transport {
 
 namespace fs = std::filesystem;
-using capture::PatternKind;
 
 capture::CaptureManifest open_capture(const fs::path& capture_dir, const std::string& layout, cv::Size projector_size,
                                       capture::FramePaths frame_paths, int bit_depth) {
@@ -35,96 +34,37 @@ capture::CaptureManifest open_capture(const fs::path& capture_dir, const std::st
 
 namespace {
 
-struct FrameIndex {
+// The white and black frames' indices (capture::validate_manifest has checked that there is one of each).
+struct WhiteBlack {
   std::size_t white = 0;
   std::size_t black = 0;
-  std::map<std::pair<GrayAxis, int>, std::pair<std::size_t, std::size_t>> gray_pairs;  // -> (pattern, inverse)
-  std::vector<std::size_t> dots;
 };
 
-// capture::validate_manifest has checked that the protocol is complete.
-FrameIndex index_frames(const capture::CaptureManifest& manifest) {
-  FrameIndex index;
+WhiteBlack find_white_black(const capture::CaptureManifest& manifest) {
+  WhiteBlack found;
   for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
-    const auto& pattern = manifest.frames[i].pattern;
-    switch (pattern.kind) {
-      case PatternKind::kWhite:
-        index.white = i;
-        break;
-      case PatternKind::kBlack:
-        index.black = i;
-        break;
-      case PatternKind::kGrayColumn:
-      case PatternKind::kGrayRow: {
-        const GrayAxis axis = pattern.kind == PatternKind::kGrayColumn ? GrayAxis::kColumns : GrayAxis::kRows;
-        auto& pair = index.gray_pairs[{axis, pattern.bit}];
-        (pattern.inverse ? pair.second : pair.first) = i;
-        break;
-      }
-      case PatternKind::kDot:
-        index.dots.push_back(i);
-        break;
-    }
+    if (manifest.frames[i].pattern.kind == capture::pattern_kind::kWhite) found.white = i;
+    if (manifest.frames[i].pattern.kind == capture::pattern_kind::kBlack) found.black = i;
   }
-  return index;
+  return found;
 }
 
-// One call on the accumulator and the capture frames it takes (indices into the manifest).
-struct Step {
-  enum class Kind { kGrayPair, kFinishGray, kDot, kFinish };
-  Kind kind;
-  std::vector<std::size_t> frames;  // the pattern and inverse of a Gray pair; the dot frame; none otherwise
-  GrayAxis axis = GrayAxis::kColumns;
-  int bit = 0;
-  int offset_x = 0;
-  int offset_y = 0;
-
-  const char* stage() const { return kind == Kind::kDot ? "compress" : kind == Kind::kFinish ? "finalize" : "decode"; }
-};
-
-// Gray pairs, finish_gray, dot frames, finish: the order TransportAccumulator requires.
-std::vector<Step> plan_steps(const FrameIndex& index, const capture::CaptureManifest& manifest) {
-  std::vector<Step> steps;
-  for (const auto& pair : index.gray_pairs) {
-    Step step{Step::Kind::kGrayPair, {pair.second.first, pair.second.second}};
-    step.axis = pair.first.first;
-    step.bit = pair.first.second;
-    steps.push_back(step);
-  }
-  steps.push_back({Step::Kind::kFinishGray, {}});
-  for (const std::size_t i : index.dots) {
-    Step step{Step::Kind::kDot, {i}};
-    step.offset_x = manifest.frames[i].pattern.dot_offset_x;
-    step.offset_y = manifest.frames[i].pattern.dot_offset_y;
-    steps.push_back(step);
-  }
-  steps.push_back({Step::Kind::kFinish, {}});
-  return steps;
-}
+bool is_finish(const TransportStep& step) { return step.op == kFinishStep; }
 
 // Consecutive steps given to the devices as one call per block, steps [first, end): up to RF_FRAME_BATCH frames of
-// Gray pairs (with finish_gray after the last) or of dot frames, the frames of one kernel launch; finish alone. Each
+// steps of one stage (Gray pairs and finish_gray, or dot frames), the frames of one kernel launch; finish alone. Each
 // call is a hand-over between threads (the tile timeout's), so one per launch rather than one per frame.
 struct Launch {
   std::size_t first = 0;
   std::size_t end = 0;
 };
 
-// Whether `step` may share the launch that `first` began.
-bool same_launch(const Step& first, const Step& step) {
-  switch (step.kind) {
-    case Step::Kind::kGrayPair:
-    case Step::Kind::kFinishGray:
-      return first.kind == Step::Kind::kGrayPair;
-    case Step::Kind::kDot:
-      return first.kind == Step::Kind::kDot;
-    case Step::Kind::kFinish:
-      break;
-  }
-  return false;
+// Whether `step` may share the launch that `first` began: the same stage, and neither ends the capture.
+bool same_launch(const TransportStep& first, const TransportStep& step) {
+  return !is_finish(first) && !is_finish(step) && std::string_view(first.stage) == step.stage;
 }
 
-std::vector<Launch> plan_launches(const std::vector<Step>& steps) {
+std::vector<Launch> plan_launches(const std::vector<TransportStep>& steps) {
   std::vector<Launch> launches;
   std::size_t frames = 0;  // in the last launch
   for (std::size_t i = 0; i < steps.size(); ++i) {
@@ -141,29 +81,11 @@ std::vector<Launch> plan_launches(const std::vector<Step>& steps) {
   return launches;
 }
 
-// Feeds one step to an accumulator: `frames` are the step's frames, white/black the capture's (or row blocks of
-// them). The finish step is not applied here (it returns the transport).
-void apply(TransportAccumulator& accumulator, const Step& step, const std::vector<cv::Mat>& frames,
-           const cv::Mat& white, const cv::Mat& black) {
-  switch (step.kind) {
-    case Step::Kind::kGrayPair:
-      accumulator.add_gray_pair(step.axis, step.bit, frames[0], frames[1]);
-      break;
-    case Step::Kind::kFinishGray:
-      accumulator.finish_gray(white, black);
-      break;
-    case Step::Kind::kDot:
-      accumulator.add_dot_frame(step.offset_x, step.offset_y, frames[0]);
-      break;
-    case Step::Kind::kFinish:
-      break;
-  }
-}
-
 // The capture opened for streaming: manifest with the camera size, white and black in memory, the setup resolved.
 struct OpenedCapture {
   capture::CaptureManifest manifest;
-  FrameIndex index;
+  const DecodingFamily* family = nullptr;
+  WhiteBlack index;
   cv::Mat white;
   cv::Mat black;
   TransportSetup setup;
@@ -173,7 +95,8 @@ OpenedCapture open_frames(const capture::FrameSource& frames, capture::CaptureMa
                           const std::function<cv::Mat(const capture::CaptureManifest&, std::size_t)>& load) {
   capture::validate_manifest(manifest, frames.name());  // a callback's manifest was never read from a file
   OpenedCapture opened;
-  opened.index = index_frames(manifest);
+  opened.family = &decoding_family(manifest.family);
+  opened.index = find_white_black(manifest);
   opened.white = load(manifest, opened.index.white);
   if (manifest.camera_size.empty()) manifest.camera_size = opened.white.size();  // later frames must match the first
   opened.black = load(manifest, opened.index.black);
@@ -197,41 +120,22 @@ OpenedCapture open_frames(const capture::FrameSource& frames, capture::CaptureMa
   return opened;
 }
 
-// Which pixels of Gray-code-only captures are decoded (GrayDecision) and their sub-pixel correspondences
-// (GraySubpixel), on the host for both paths alike; captures with the dot grid keep their dot centroids. Timed as
-// the stage "subpixel".
-class SubpixelGray {
+// The family's host refinement, when it has one, fed each step's frames. Timed as the stage "subpixel".
+class Refinement {
  public:
-  SubpixelGray(const OpenedCapture& capture, StageClock& clock) : clock_(clock) {
-    if (capture.setup.dot_spacing != 0) return;
-    decision_.emplace(capture.white, capture.black);
-    gray_.emplace(capture.setup.camera_size);
+  Refinement(const OpenedCapture& capture, StageClock& clock)
+      : clock_(clock), refinement_(capture.family->refinement(capture.setup, capture.white, capture.black)) {}
+  void add(const TransportStep& step, const std::vector<cv::Mat>& frames) {
+    if (refinement_) clock_.time("subpixel", [&] { refinement_->add(step, frames); });
   }
-  // `frames` as the accumulators take them (setup.frame_depth): raw ones are made linear first.
-  void add(const Step& step, const std::vector<cv::Mat>& frames, const TransportSetup& setup) {
-    if (!gray_ || step.kind != Step::Kind::kGrayPair) return;
-    clock_.time("subpixel", [&] {
-      const bool linear = setup.frame_depth == CV_32F;
-      const cv::Mat pattern = linear ? frames[0] : capture::linearize_samples(frames[0], setup.samples);
-      const cv::Mat inverse = linear ? frames[1] : capture::linearize_samples(frames[1], setup.samples);
-      decision_->add_gray_pair(step.axis, gray_bit_mask(setup, step.axis, step.bit), pattern, inverse);
-      gray_->add_gray_pair(step.axis, pattern, inverse);
-    });
-  }
-  // The decision's counts for Gray-code-only captures.
   std::optional<GrayDecisionCounts> refine(CompressedTransport& transport) const {
-    if (!gray_) return std::nullopt;
-    return clock_.time("subpixel", [&] {
-      const GrayDecisionCounts counts = decision_->decide(transport);
-      gray_->refine(transport);
-      return counts;
-    });
+    if (!refinement_) return std::nullopt;
+    return clock_.time("subpixel", [&] { return refinement_->refine(transport); });
   }
 
  private:
   StageClock& clock_;
-  std::optional<GrayDecision> decision_;
-  std::optional<GraySubpixel> gray_;
+  std::unique_ptr<TransportRefinement> refinement_;
 };
 
 // The capture checks fed the frames as they are read: white and black at once, then each step's frames. Timed as the
@@ -244,7 +148,7 @@ class CheckedFrames {
       checks_.add(capture.index.black, capture.black);
     });
   }
-  void add(const Step& step, const std::vector<cv::Mat>& frames) {
+  void add(const TransportStep& step, const std::vector<cv::Mat>& frames) {
     clock_.time("checks", [&] {
       for (std::size_t i = 0; i < step.frames.size(); ++i) checks_.add(step.frames[i], frames[i]);
     });
@@ -267,9 +171,9 @@ capture::FrameForm frame_form(const TransportSetup& setup) {
 // earlier transport's memory) goes to the one block's accumulator, or with several blocks to the stacked result.
 class TransportBlocks final : public sched::BlockTask {
  public:
-  TransportBlocks(const capture::FrameSource& source, const OpenedCapture& capture, const std::vector<Step>& steps,
-                  const std::vector<Launch>& launches, const std::vector<sched::Tile>& blocks,
-                  cl::ProgramCache& programs, CompressedTransport storage)
+  TransportBlocks(const capture::FrameSource& source, const OpenedCapture& capture,
+                  const std::vector<TransportStep>& steps, const std::vector<Launch>& launches,
+                  const std::vector<sched::Tile>& blocks, cl::ProgramCache& programs, CompressedTransport storage)
       : source_(source),
         capture_(capture),
         steps_(steps),
@@ -284,7 +188,7 @@ class TransportBlocks final : public sched::BlockTask {
   void set_frames(std::vector<cv::Mat> frames) { frames_ = std::move(frames); }
 
   void prepare(sched::Worker& worker) override {
-    for (const auto& request : transport_programs(capture_.setup, worker.entry())) {
+    for (const auto& request : capture_.family->programs(capture_.setup, worker.entry())) {
       programs_.get(worker.device(), request.kernel_path, request.options);
     }
   }
@@ -293,8 +197,9 @@ class TransportBlocks final : public sched::BlockTask {
     TransportSetup setup = capture_.setup;
     setup.camera_size.height = static_cast<int>(blocks_[block].size());
     // A block rebuilt on another device after a failure gets new memory: storage_ went to its first accumulator.
-    accumulators_[block] = make_device_accumulator(setup, worker.device(), programs_, worker.entry(), {},
-                                                   blocks_.size() == 1 ? std::move(storage_) : CompressedTransport{});
+    accumulators_[block] =
+        capture_.family->make_device(setup, worker.device(), programs_, worker.entry(),
+                                     blocks_.size() == 1 ? std::move(storage_) : CompressedTransport{});
   }
 
   // Runner step `launch`: the launch's steps in order.
@@ -303,8 +208,8 @@ class TransportBlocks final : public sched::BlockTask {
     const std::shared_ptr<TransportAccumulator> accumulator = accumulators_[block];
     std::size_t next_frame = 0;  // in frames_
     for (std::size_t index = launches_[launch].first; index < launches_[launch].end; ++index) {
-      const Step& step = steps_[index];
-      if (step.kind == Step::Kind::kFinish) {
+      const TransportStep& step = steps_[index];
+      if (is_finish(step)) {
         CompressedTransport result = accumulator->finish();
         worker.deliver([&] { results_[block] = std::move(result); });
         return;
@@ -315,7 +220,7 @@ class TransportBlocks final : public sched::BlockTask {
             replay ? source_.load(capture_.manifest, frame, frame_form(capture_.setup)) : frames_[next_frame], block));
         ++next_frame;
       }
-      apply(*accumulator, step, frames, rows(capture_.white, block), rows(capture_.black, block));
+      accumulator->add(step, frames, rows(capture_.white, block), rows(capture_.black, block));
     }
   }
 
@@ -347,7 +252,7 @@ class TransportBlocks final : public sched::BlockTask {
 
   const capture::FrameSource& source_;
   const OpenedCapture& capture_;
-  const std::vector<Step>& steps_;
+  const std::vector<TransportStep>& steps_;
   const std::vector<Launch>& launches_;
   const std::vector<sched::Tile>& blocks_;
   cl::ProgramCache& programs_;
@@ -370,21 +275,21 @@ TransportRun compute_transport(const capture::FrameSource& frames, capture::Capt
   };
   const OpenedCapture capture = open_frames(frames, std::move(manifest), setup, load);
   auto accumulator = clock.time("setup", [&] { return make_accumulator(capture.setup); });
-  SubpixelGray subpixel(capture, clock);
+  Refinement refinement(capture, clock);
   CheckedFrames checks(capture, clock);
   TransportRun run;
-  for (const Step& step : plan_steps(capture.index, capture.manifest)) {
-    if (step.kind == Step::Kind::kFinish) {
-      run.transport = clock.time(step.stage(), [&] { return accumulator->finish(); });
+  for (const TransportStep& step : capture.family->plan(capture.manifest)) {
+    if (is_finish(step)) {
+      run.transport = clock.time(step.stage, [&] { return accumulator->finish(); });
       break;
     }
     std::vector<cv::Mat> step_frames;
     for (const std::size_t i : step.frames) step_frames.push_back(load(capture.manifest, i));
-    clock.time(step.stage(), [&] { apply(*accumulator, step, step_frames, capture.white, capture.black); });
-    subpixel.add(step, step_frames, capture.setup);
+    clock.time(step.stage, [&] { accumulator->add(step, step_frames, capture.white, capture.black); });
+    refinement.add(step, step_frames);
     checks.add(step, step_frames);
   }
-  run.gray_decision = subpixel.refine(run.transport);
+  run.gray_decision = refinement.refine(run.transport);
   run.transport.white.assign(capture.white.begin<float>(), capture.white.end<float>());
   run.checks = checks.finish();
   run.timings = clock.timings();
@@ -413,10 +318,10 @@ TransportRun compute_transport_on_devices(const capture::FrameSource& frames, ca
   }
   clock.time("build programs", [&] {
     cl::prepare_programs(devices, programs, [&](std::size_t position) {
-      return transport_programs(capture.setup, entries.entry_for(position, devices[position].info()));
+      return capture.family->programs(capture.setup, entries.entry_for(position, devices[position].info()));
     });
   });
-  const std::vector<Step> steps = plan_steps(capture.index, capture.manifest);
+  const std::vector<TransportStep> steps = capture.family->plan(capture.manifest);
   const std::vector<Launch> launches = plan_launches(steps);
   const auto rows = static_cast<std::size_t>(capture.setup.camera_size.height);
   const std::vector<sched::Tile> blocks =
@@ -429,27 +334,27 @@ TransportRun compute_transport_on_devices(const capture::FrameSource& frames, ca
 
   // The frames of the next steps are read on `readers` threads while the devices work on the current launch.
   std::vector<std::vector<std::size_t>> groups(steps.size());
-  std::transform(steps.begin(), steps.end(), groups.begin(), [](const Step& step) { return step.frames; });
+  std::transform(steps.begin(), steps.end(), groups.begin(), [](const TransportStep& step) { return step.frames; });
   capture::FrameReadAhead read_ahead(frames, capture.manifest, std::move(groups), readers,
                                      2 * static_cast<std::size_t>(readers), frame_form(capture.setup));
-  SubpixelGray subpixel(capture, clock);
+  Refinement refinement(capture, clock);
   CheckedFrames checks(capture, clock);
   for (std::size_t l = 0; l < launches.size(); ++l) {
     std::vector<cv::Mat> launch_frames;
     for (std::size_t i = launches[l].first; i < launches[l].end; ++i) {
       std::vector<cv::Mat> step_frames = clock.time("read frames", [&] { return read_ahead.take(i); });
       progress.advance(steps[i].frames.size());
-      subpixel.add(steps[i], step_frames, capture.setup);
+      refinement.add(steps[i], step_frames);
       checks.add(steps[i], step_frames);
       launch_frames.insert(launch_frames.end(), step_frames.begin(), step_frames.end());
     }
     task.set_frames(std::move(launch_frames));
-    const char* stage = steps[launches[l].first].stage();
+    const char* stage = steps[launches[l].first].stage;
     clock.time(stage, [&] { runner.run_step(l, stage); });
   }
   TransportRun run;
   run.transport = clock.time("finalize", [&] { return task.assemble(); });
-  run.gray_decision = subpixel.refine(run.transport);
+  run.gray_decision = refinement.refine(run.transport);
   run.transport.white.assign(capture.white.begin<float>(), capture.white.end<float>());
   run.checks = checks.finish();
   run.timings = clock.timings();

@@ -39,11 +39,12 @@ struct TransportRun {
 
 using AccumulatorFactory = std::function<std::unique_ptr<TransportAccumulator>(const TransportSetup&)>;
 
-// Reads the frames one at a time (white, black, Gray pairs, dot frames: at most two in memory besides white and
-// black) and feeds them to the accumulator made for the capture's setup. `setup` gives K and the thresholds; sizes
-// and dot spacing come from the manifest (camera size from the first frame when the manifest has none).
-// Throws InputError naming the file (or the source and frame) for a missing, unreadable or mismatched frame, for a
-// manifest that is not a complete protocol (capture::validate_manifest), and for an all-dark capture.
+// Reads the frames one at a time (white and black, then each step the manifest's decoding family plans: at most two
+// frames in memory besides white and black) and feeds them to the accumulator made for the capture's setup. `setup`
+// gives K and the thresholds; sizes and dot spacing come from the manifest (camera size from the first frame when the
+// manifest has none). Throws InputError naming the file (or the source and frame) for a missing, unreadable or
+// mismatched frame, for a manifest that is not a complete protocol (capture::validate_manifest), and for an all-dark
+// capture.
 TransportRun compute_transport(const capture::FrameSource& frames, capture::CaptureManifest manifest,
                                TransportSetup setup, const AccumulatorFactory& make_accumulator);
 

@@ -9,7 +9,7 @@
 
 #include "host/capture/manifest.h"
 #include "host/cl/kernel_launch.h"
-#include "host/transport/accumulator.h"
+#include "host/transport/graycode_accumulator.h"
 #include "kernels/common/lanes.h"
 #include "kernels/transport/gray_decode.h"
 
@@ -17,7 +17,7 @@ namespace rfrecon::transport {
 
 namespace {
 
-class DeviceAccumulator final : public TransportAccumulator {
+class DeviceAccumulator final : public GraycodeAccumulator {
  public:
   DeviceAccumulator(const TransportSetup& setup, cl::DeviceContext& device, cl::ProgramCache& programs,
                     KernelEntry entry, const std::string& build_options, CompressedTransport storage)
@@ -241,10 +241,10 @@ class DeviceAccumulator final : public TransportAccumulator {
 
 }  // namespace
 
-std::unique_ptr<TransportAccumulator> make_device_accumulator(TransportSetup setup, cl::DeviceContext& device,
-                                                              cl::ProgramCache& programs, KernelEntry entry,
-                                                              const std::string& build_options,
-                                                              CompressedTransport storage) {
+std::unique_ptr<GraycodeAccumulator> make_device_accumulator(TransportSetup setup, cl::DeviceContext& device,
+                                                             cl::ProgramCache& programs, KernelEntry entry,
+                                                             const std::string& build_options,
+                                                             CompressedTransport storage) {
   check_kernel_dot_spacing(setup.dot_spacing);
   setup.thresholds = resolve_thresholds(setup.thresholds, 8);
   return std::make_unique<DeviceAccumulator>(setup, device, programs, entry, build_options, std::move(storage));

@@ -7,7 +7,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "host/transport/accumulator.h"
+#include "host/transport/graycode_accumulator.h"
 
 namespace rfrecon::transport {
 

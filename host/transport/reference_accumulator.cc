@@ -7,10 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "host/capture/graycode_patterns.h"
 #include "host/capture/manifest.h"
 #include "host/capture/protocol.h"
 #include "host/core/errors.h"
-#include "host/transport/accumulator.h"
+#include "host/transport/graycode_accumulator.h"
 
 namespace rfrecon::transport {
 
@@ -72,7 +73,7 @@ int nearest_dot(int coordinate, int offset, int spacing) {
   return offset + spacing * static_cast<int>(std::floor(static_cast<double>(shifted) / spacing));
 }
 
-class ReferenceAccumulator final : public TransportAccumulator {
+class ReferenceAccumulator final : public GraycodeAccumulator {
  public:
   explicit ReferenceAccumulator(const TransportSetup& setup) : t_(make_empty_transport(setup)) {}
 
@@ -180,7 +181,7 @@ class ReferenceAccumulator final : public TransportAccumulator {
 
 }  // namespace
 
-std::unique_ptr<TransportAccumulator> make_reference_accumulator(TransportSetup setup) {
+std::unique_ptr<GraycodeAccumulator> make_reference_accumulator(TransportSetup setup) {
   setup.thresholds = resolve_thresholds(setup.thresholds, 8);
   return std::make_unique<ReferenceAccumulator>(setup);
 }

@@ -25,6 +25,7 @@ from ._rfrecon import (  # noqa: F401
     make_manifest,
     open_camera,
     open_projector,
+    pattern_families,
     pattern_image,
     read_rig,
     read_transport,

@@ -144,6 +144,7 @@ PYBIND11_MODULE(_rfrecon, module) {
       .def_readwrite("black_level", &rfrecon::Manifest::black_level)
       .def_readwrite("camera_response", &rfrecon::Manifest::camera_response)
       .def_readonly("dot_spacing", &rfrecon::Manifest::dot_spacing)
+      .def_readonly("family", &rfrecon::Manifest::family)
       .def_property_readonly("frame_files",
                              [](const rfrecon::Manifest& m) {
                                std::vector<std::string> files;
@@ -154,12 +155,17 @@ PYBIND11_MODULE(_rfrecon, module) {
 
   module.def(
       "make_manifest",
-      [](std::pair<int, int> projector_size, std::pair<int, int> camera_size, int bit_depth, int dot_spacing) {
+      [](std::pair<int, int> projector_size, std::pair<int, int> camera_size, int bit_depth, int dot_spacing,
+         const std::string& family) {
         const py::gil_scoped_release release;
-        return rfrecon::make_manifest(size_of(projector_size), size_of(camera_size), bit_depth, dot_spacing);
+        return rfrecon::make_manifest(size_of(projector_size), size_of(camera_size), bit_depth, dot_spacing, family);
       },
       py::arg("projector_size"), py::arg("camera_size"), py::arg("bit_depth") = 8, py::arg("dot_spacing") = 8,
-      "The protocol's manifest (white, black, Gray code with inverses, dot grid) for (width, height) sizes.");
+      py::arg("family") = "graycode",
+      "A pattern family's manifest (graycode: white, black, Gray code with inverses, dot grid) for (width, height) "
+      "sizes.");
+  module.def("pattern_families", &rfrecon::pattern_family_names,
+             "The pattern families' names, for make_manifest(family=...): graycode, then any registered in C++.");
   module.def(
       "pattern_image",
       [](const rfrecon::Manifest& manifest, std::size_t index) {

@@ -39,8 +39,7 @@ void expect_frames_show_their_patterns(const std::filesystem::path& dir, const s
   const double tolerance = 0.02;
   for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
     const cv::Mat frame = capture::load_frame(dir, manifest, i);
-    const cv::Mat pattern =
-        capture::render_pattern(manifest.frames[i].pattern, manifest.projector_size, manifest.dot_spacing);
+    const cv::Mat pattern = capture::render_pattern(manifest.frames[i].pattern, capture::protocol_options(manifest));
     const cv::Mat expected = sim::transport_image(T, pattern, scene.camera.size) + scene.capture.ambient;
     const double rms = cv::norm(frame, expected, cv::NORM_L2) / std::sqrt(static_cast<double>(frame.total()));
     EXPECT_LT(rms, tolerance) << manifest.frames[i].file;

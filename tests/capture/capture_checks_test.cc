@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include "host/capture/graycode_patterns.h"
 #include "host/core/errors.h"
 #include "host/transport/compute_transport.h"
 #include "tests/capture/rendered_capture.h"
@@ -106,7 +107,7 @@ TEST(CaptureChecksTest, SaturatedRenderIsCaughtWithItsShare) {
   // the 80x60 camera is sampled whole (stride 1), up to a pattern frame that noise lifts to the top.
   std::size_t white = 0;
   for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
-    if (manifest.frames[i].pattern.kind == PatternKind::kWhite) white = i;
+    if (manifest.frames[i].pattern.kind == pattern_kind::kWhite) white = i;
   }
   const cv::Mat raw = cv::imread((dir.path() / manifest.frames[white].file).string(), cv::IMREAD_ANYDEPTH);
   const double top_share =
@@ -119,9 +120,9 @@ TEST(CaptureChecksTest, SaturatedRenderIsCaughtWithItsShare) {
 TEST(CaptureChecksTest, SwappedFramesAreOutOfOrder) {
   rfrecon::testing::TempDir dir("checks_order");
   const auto manifest = render(dir.path(), [](sim::Scene&) {});
-  const auto swap_files = [&](PatternKind a_kind, int a_bit, PatternKind b_kind, int b_bit) {
+  const auto swap_files = [&](const char* a_kind, int a_bit, const char* b_kind, int b_bit) {
     CaptureManifest swapped = manifest;
-    const auto find = [&](PatternKind kind, int bit) {
+    const auto find = [&](const char* kind, int bit) {
       return std::find_if(swapped.frames.begin(), swapped.frames.end(), [&](const Frame& frame) {
         return frame.pattern.kind == kind && (bit < 0 || (frame.pattern.bit == bit && !frame.pattern.inverse));
       });
@@ -129,9 +130,9 @@ TEST(CaptureChecksTest, SwappedFramesAreOutOfOrder) {
     std::swap(find(a_kind, a_bit)->file, find(b_kind, b_bit)->file);
     return check_capture(dir.path(), swapped);
   };
-  const auto white_black = swap_files(PatternKind::kWhite, -1, PatternKind::kBlack, -1);
+  const auto white_black = swap_files(pattern_kind::kWhite, -1, pattern_kind::kBlack, -1);
   EXPECT_TRUE(has_finding(white_black, "frame_order")) << findings_text(white_black);
-  const auto column_row = swap_files(PatternKind::kGrayColumn, 0, PatternKind::kGrayRow, 0);
+  const auto column_row = swap_files(pattern_kind::kGrayColumn, 0, pattern_kind::kGrayRow, 0);
   EXPECT_TRUE(has_finding(column_row, "frame_order")) << findings_text(column_row);
 }
 

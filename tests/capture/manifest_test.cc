@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sys/stat.h>
 
+#include "host/capture/graycode_patterns.h"
 #include "host/core/errors.h"
 #include "tests/common/temp_dir.h"
 #include "tests/core/refusal_in_child.h"
@@ -172,8 +173,8 @@ TEST_F(ManifestTest, OpenCvLayoutNeedsTheRightCount) {
   }
   const auto manifest = manifest_from_opencv_layout(dir_, projector);
   EXPECT_EQ(manifest.frames.front().file, "img100.png");
-  EXPECT_EQ(manifest.frames.front().pattern.kind, PatternKind::kGrayColumn);
-  EXPECT_EQ(manifest.frames.back().pattern.kind, PatternKind::kBlack);
+  EXPECT_EQ(manifest.frames.front().pattern.kind, pattern_kind::kGrayColumn);
+  EXPECT_EQ(manifest.frames.back().pattern.kind, pattern_kind::kBlack);
   EXPECT_EQ(manifest.camera_size, cv::Size(20, 10));
   try {
     (void)manifest_from_opencv_layout(dir_, {64, 16});

@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 #include <opencv2/structured_light.hpp>
 
+#include "host/capture/graycode_patterns.h"
+#include "host/core/errors.h"
+
 namespace rfrecon::capture {
 namespace {
 
@@ -27,7 +30,7 @@ TEST_P(ProtocolSizes, GrayCodeImagesEqualOpenCvs) {
   const auto sequence = opencv_graycode_protocol(size);
   ASSERT_EQ(sequence.size(), expected.size());
   for (std::size_t i = 0; i < sequence.size(); ++i) {
-    const cv::Mat ours = render_pattern(sequence[i], size, 0);
+    const cv::Mat ours = render_pattern(sequence[i], {size, 0});
     EXPECT_EQ(cv::countNonZero(ours != expected[i]), 0) << "frame " << i << " differs from OpenCV's";
   }
 }
@@ -54,13 +57,13 @@ TEST(ProtocolTest, DotGridLightsEveryProjectorPixelExactlyOnce) {
   ProtocolOptions options{size, 4};
   const auto sequence = make_protocol(options);
   ASSERT_EQ(sequence.size(), 2U + 2U * (gray_bits(50) + gray_bits(30)) + 16U);
-  EXPECT_EQ(sequence[0].kind, PatternKind::kWhite);
-  EXPECT_EQ(sequence[1].kind, PatternKind::kBlack);
+  EXPECT_EQ(sequence[0].kind, pattern_kind::kWhite);
+  EXPECT_EQ(sequence[1].kind, pattern_kind::kBlack);
   cv::Mat count(size, CV_32S, cv::Scalar(0));
   for (const auto& pattern : sequence) {
-    if (pattern.kind != PatternKind::kDot) continue;
+    if (pattern.kind != pattern_kind::kDot) continue;
     cv::Mat lit;
-    render_pattern(pattern, size, options.dot_spacing).convertTo(lit, CV_32S, 1.0 / 255);
+    render_pattern(pattern, options).convertTo(lit, CV_32S, 1.0 / 255);
     count += lit;
   }
   EXPECT_EQ(cv::countNonZero(count != 1), 0);
@@ -69,7 +72,7 @@ TEST(ProtocolTest, DotGridLightsEveryProjectorPixelExactlyOnce) {
 TEST(ProtocolTest, RejectsDegenerateOptions) {
   EXPECT_ANY_THROW(make_protocol({cv::Size(0, 480), 0}));
   EXPECT_ANY_THROW(make_protocol({cv::Size(640, 480), 1}));
-  EXPECT_ANY_THROW(pattern_kind_from_string("stripes"));
+  EXPECT_THROW(make_protocol({cv::Size(640, 480), 0, "stripes"}), InputError);  // no such family
 }
 
 }  // namespace

@@ -127,7 +127,7 @@ namespace {
 
 // The transport accumulator on the HLS tops, its buffers host vectors, the Gray pairs batched RF_GRAY_PAIR_BATCH and
 // the dot frames RF_FRAME_BATCH at a time in one batch buffer, as the device accumulator batches them.
-class HlsAccumulator final : public TransportAccumulator {
+class HlsAccumulator final : public GraycodeAccumulator {
  public:
   explicit HlsAccumulator(TransportSetup setup) {
     setup.thresholds = resolve_thresholds(setup.thresholds, 8);

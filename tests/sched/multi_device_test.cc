@@ -215,8 +215,8 @@ std::size_t launches(const std::vector<capture::Pattern>& sequence, const std::s
   std::size_t frames = 0;
   for (const auto& pattern : sequence) {
     const bool gray =
-        pattern.kind == capture::PatternKind::kGrayColumn || pattern.kind == capture::PatternKind::kGrayRow;
-    if (stage == "decode" ? gray : pattern.kind == capture::PatternKind::kDot) ++frames;
+        pattern.kind == capture::pattern_kind::kGrayColumn || pattern.kind == capture::pattern_kind::kGrayRow;
+    if (stage == "decode" ? gray : pattern.kind == capture::pattern_kind::kDot) ++frames;
   }
   return stage == "finalize" ? 1 : (frames + RF_FRAME_BATCH - 1) / RF_FRAME_BATCH;
 }

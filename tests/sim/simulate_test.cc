@@ -122,7 +122,7 @@ TEST_F(SimulateTest, NoiseFreeFramesLinearizeToTransport) {
     const auto manifest = capture::read_manifest(out / "capture");
     const double tolerance = gamma * 0.5 / (65535.0 - 64.0) + 1e-6;
     for (std::size_t i = 0; i < manifest.frames.size(); i += 7) {
-      const cv::Mat pattern = capture::render_pattern(manifest.frames[i].pattern, scene.projector.size, 4);
+      const cv::Mat pattern = capture::render_pattern(manifest.frames[i].pattern, {scene.projector.size, 4});
       const cv::Mat expected = transport_image(T, pattern, scene.camera.size) + scene.capture.ambient;
       const cv::Mat got = capture::load_frame(out / "capture", manifest, i);
       double max_error = 0;

@@ -45,7 +45,7 @@ Capture render(const ProjectorFromCamera& map, double noise, unsigned seed, doub
   capture.sequence = capture::make_protocol({kProjector, 0});
   capture.truth = cv::Mat(kCamera, CV_64FC2);
   std::vector<cv::Mat> light;
-  for (const auto& pattern : capture.sequence) light.push_back(capture::render_pattern(pattern, kProjector, 0));
+  for (const auto& pattern : capture.sequence) light.push_back(capture::render_pattern(pattern, {kProjector, 0}));
   std::mt19937 random(seed);
   std::normal_distribution<float> gaussian(0.0f, static_cast<float>(noise));
   for (std::size_t f = 0; f < light.size(); ++f) capture.frames.emplace_back(kCamera, CV_32F);
@@ -85,16 +85,16 @@ GrayDecisionCounts decide_and_refine(CompressedTransport& transport, const std::
                                      const std::vector<cv::Mat>& frames, bool decide = true) {
   std::array<cv::Mat, 2> white_black;
   for (std::size_t i = 0; i < sequence.size(); ++i) {
-    if (sequence[i].kind == capture::PatternKind::kWhite) white_black[0] = frames[i];
-    if (sequence[i].kind == capture::PatternKind::kBlack) white_black[1] = frames[i];
+    if (sequence[i].kind == capture::pattern_kind::kWhite) white_black[0] = frames[i];
+    if (sequence[i].kind == capture::pattern_kind::kBlack) white_black[1] = frames[i];
   }
   GrayDecision decision(white_black[0], white_black[1]);
   GraySubpixel subpixel(transport.setup.camera_size);
   for (std::size_t i = 0; i < sequence.size(); ++i) {
     const auto& pattern = sequence[i];
-    if (pattern.kind != capture::PatternKind::kGrayColumn && pattern.kind != capture::PatternKind::kGrayRow) continue;
+    if (pattern.kind != capture::pattern_kind::kGrayColumn && pattern.kind != capture::pattern_kind::kGrayRow) continue;
     if (pattern.inverse) continue;
-    const GrayAxis axis = pattern.kind == capture::PatternKind::kGrayColumn ? GrayAxis::kColumns : GrayAxis::kRows;
+    const GrayAxis axis = pattern.kind == capture::pattern_kind::kGrayColumn ? GrayAxis::kColumns : GrayAxis::kRows;
     // The inverse follows its pattern.
     decision.add_gray_pair(axis, gray_bit_mask(transport.setup, axis, pattern.bit), frames[i], frames[i + 1]);
     subpixel.add_gray_pair(axis, frames[i], frames[i + 1]);

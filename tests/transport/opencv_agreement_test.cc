@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/structured_light.hpp>
 
+#include "host/capture/graycode_patterns.h"
 #include "host/capture/protocol.h"
 #include "tests/transport/synthetic_capture.h"
 #include "tests/transport/test_capture_feed.h"

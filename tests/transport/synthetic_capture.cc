@@ -73,7 +73,7 @@ std::vector<cv::Mat> render_frames(const PlaneScene& scene, const std::vector<ca
   std::normal_distribution<double> noise(0.0, noise_dn);
   std::vector<cv::Mat> frames;
   for (const auto& pattern : sequence) {
-    const cv::Mat projected = capture::render_pattern(pattern, scene.projector_size, dot_spacing);
+    const cv::Mat projected = capture::render_pattern(pattern, {scene.projector_size, dot_spacing});
     Eigen::VectorXf light(scene.projector_size.area());
     for (int i = 0; i < light.size(); ++i) light[i] = projected.ptr<unsigned char>()[i] / 255.0f;
     const Eigen::VectorXf image = scene.transport * light;

@@ -4,12 +4,13 @@
 #include <algorithm>
 #include <random>
 
+#include "host/capture/graycode_patterns.h"
 #include "host/capture/protocol.h"
 #include "kernels/transport/gray_decode.h"
 
 namespace rfrecon::transport::testing {
 
-using capture::PatternKind;
+namespace pattern_kind = capture::pattern_kind;
 
 namespace {
 
@@ -62,28 +63,28 @@ std::vector<cv::Mat> linearize(const std::vector<cv::Mat>& frames) {
   return linear;
 }
 
-CompressedTransport feed_all(TransportAccumulator& accumulator, const std::vector<capture::Pattern>& sequence,
+CompressedTransport feed_all(GraycodeAccumulator& accumulator, const std::vector<capture::Pattern>& sequence,
                              const std::vector<cv::Mat>& linear_frames) {
   return feed_all(accumulator, sequence, linear_frames, linear_frames);
 }
 
-CompressedTransport feed_all(TransportAccumulator& accumulator, const std::vector<capture::Pattern>& sequence,
+CompressedTransport feed_all(GraycodeAccumulator& accumulator, const std::vector<capture::Pattern>& sequence,
                              const std::vector<cv::Mat>& frames, const std::vector<cv::Mat>& linear_frames) {
   cv::Mat white;
   cv::Mat black;
   for (std::size_t i = 0; i < sequence.size(); ++i) {
     const auto& pattern = sequence[i];
-    if (pattern.kind == PatternKind::kWhite) white = linear_frames[i];
-    if (pattern.kind == PatternKind::kBlack) black = linear_frames[i];
-    if ((pattern.kind == PatternKind::kGrayColumn || pattern.kind == PatternKind::kGrayRow) && !pattern.inverse) {
+    if (pattern.kind == pattern_kind::kWhite) white = linear_frames[i];
+    if (pattern.kind == pattern_kind::kBlack) black = linear_frames[i];
+    if ((pattern.kind == pattern_kind::kGrayColumn || pattern.kind == pattern_kind::kGrayRow) && !pattern.inverse) {
       // make_protocol puts each inverse right after its pattern.
-      const GrayAxis axis = pattern.kind == PatternKind::kGrayColumn ? GrayAxis::kColumns : GrayAxis::kRows;
+      const GrayAxis axis = pattern.kind == pattern_kind::kGrayColumn ? GrayAxis::kColumns : GrayAxis::kRows;
       accumulator.add_gray_pair(axis, pattern.bit, frames[i], frames[i + 1]);
     }
   }
   accumulator.finish_gray(white, black);
   for (std::size_t i = 0; i < sequence.size(); ++i) {
-    if (sequence[i].kind == PatternKind::kDot) {
+    if (sequence[i].kind == pattern_kind::kDot) {
       accumulator.add_dot_frame(sequence[i].dot_offset_x, sequence[i].dot_offset_y, frames[i]);
     }
   }

@@ -1,4 +1,4 @@
-// Feeds in-memory capture frames to a TransportAccumulator in protocol order (the all-at-once path of the tests), and
+// Feeds in-memory capture frames to a GraycodeAccumulator in protocol order (the all-at-once path of the tests), and
 // the tiny capture the kernel tests feed.
 #pragma once
 
@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "host/capture/manifest.h"
-#include "host/transport/accumulator.h"
+#include "host/transport/graycode_accumulator.h"
 #include "tests/transport/synthetic_capture.h"
 
 namespace rfrecon::transport::testing {
@@ -40,10 +40,10 @@ Lights random_lights(const CompressedTransport& transport);
 std::vector<cv::Mat> linearize(const std::vector<cv::Mat>& frames);
 
 // Gray pairs, white/black, dot frames, finish: the whole capture held in memory.
-CompressedTransport feed_all(TransportAccumulator& accumulator, const std::vector<capture::Pattern>& sequence,
+CompressedTransport feed_all(GraycodeAccumulator& accumulator, const std::vector<capture::Pattern>& sequence,
                              const std::vector<cv::Mat>& linear_frames);
 // The same with the Gray and dot frames from `frames` (raw samples, say) and white and black from `linear_frames`.
-CompressedTransport feed_all(TransportAccumulator& accumulator, const std::vector<capture::Pattern>& sequence,
+CompressedTransport feed_all(GraycodeAccumulator& accumulator, const std::vector<capture::Pattern>& sequence,
                              const std::vector<cv::Mat>& frames, const std::vector<cv::Mat>& linear_frames);
 
 // The setup of a capture of `frames` (camera size of the first frame).

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "host/capture/protocol.h"
-#include "host/transport/accumulator.h"
+#include "host/transport/graycode_accumulator.h"
 #include "host/transport/spmv.h"
 #include "tests/transport/synthetic_capture.h"
 #include "tests/transport/test_capture_feed.h"

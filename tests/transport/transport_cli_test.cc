@@ -13,6 +13,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sys/stat.h>
 
+#include "host/capture/graycode_patterns.h"
 #include "host/capture/protocol.h"
 #include "host/cl/program_store.h"
 #include "host/cli/commands.h"
@@ -354,7 +355,7 @@ TEST_F(TransportCliTest, AFileListedForTwoPatternsIsRefused) {
 TEST_F(TransportCliTest, PatternsIdenticalToTheirInversesDecodeNothingAndWriteNothing) {
   for (std::size_t i = 0; i < manifest_.frames.size(); ++i) {
     const auto& pattern = manifest_.frames[i].pattern;
-    if (pattern.kind != capture::PatternKind::kGrayColumn && pattern.kind != capture::PatternKind::kGrayRow) continue;
+    if (pattern.kind != capture::pattern_kind::kGrayColumn && pattern.kind != capture::pattern_kind::kGrayRow) continue;
     if (!pattern.inverse) continue;
     for (std::size_t j = 0; j < manifest_.frames.size(); ++j) {
       const auto& other = manifest_.frames[j].pattern;
@@ -373,7 +374,7 @@ TEST_F(TransportCliTest, PatternsIdenticalToTheirInversesDecodeNothingAndWriteNo
 TEST_F(TransportCliTest, NothingDecodedNamesTheCaptureChecksFindings) {
   for (std::size_t i = 0; i < manifest_.frames.size(); ++i) {
     const auto kind = manifest_.frames[i].pattern.kind;
-    if (kind == capture::PatternKind::kGrayColumn || kind == capture::PatternKind::kGrayRow) {
+    if (kind == capture::pattern_kind::kGrayColumn || kind == capture::pattern_kind::kGrayRow) {
       fs::copy_file(frame_path(0), frame_path(i), fs::copy_options::overwrite_existing);
     }
   }
@@ -408,11 +409,11 @@ TEST_F(TransportCliTest, PatternsDecodeBackToTheirProjectorCoordinates) {
   // Decoding the written Gray images as a camera that sees the projector pixel for pixel gives every coordinate.
   std::vector<std::uint32_t> gray_x(std::size_t{20} * 9, 0), gray_y(std::size_t{20} * 9, 0);
   for (const auto& frame : manifest.frames) {
-    if (frame.pattern.inverse || (frame.pattern.kind != capture::PatternKind::kGrayColumn &&
-                                  frame.pattern.kind != capture::PatternKind::kGrayRow)) {
+    if (frame.pattern.inverse || (frame.pattern.kind != capture::pattern_kind::kGrayColumn &&
+                                  frame.pattern.kind != capture::pattern_kind::kGrayRow)) {
       continue;
     }
-    const bool columns = frame.pattern.kind == capture::PatternKind::kGrayColumn;
+    const bool columns = frame.pattern.kind == capture::pattern_kind::kGrayColumn;
     const cv::Mat image = cv::imread((out / frame.file).string(), cv::IMREAD_GRAYSCALE);
     const int bits = columns ? 5 : 4;
     for (int i = 0; i < 20 * 9; ++i) {

@@ -195,7 +195,7 @@ TEST_F(TransportKernelTest, GrayPairsOverAFullAndAPartialBatchMatchReference) {
   const auto capture = testing::tiny_gray_capture_over_batches();
   if (!capture) GTEST_SKIP() << "RF_GRAY_PAIR_BATCH " << RF_GRAY_PAIR_BATCH << " has no tiny partial batch";
   const auto pairs = std::count_if(capture->sequence.begin(), capture->sequence.end(), [](const auto& pattern) {
-    return pattern.kind != capture::PatternKind::kWhite && pattern.kind != capture::PatternKind::kBlack &&
+    return pattern.kind != capture::pattern_kind::kWhite && pattern.kind != capture::pattern_kind::kBlack &&
            !pattern.inverse;
   });
   ASSERT_GT(pairs, RF_GRAY_PAIR_BATCH);
