@@ -190,7 +190,10 @@ Scene resolve_scene(const std::string& name_or_file, const SceneChanges& changes
     (void)capture::pattern_family(changes.family);  // InputError listing the families for an unknown one
     scene.capture.family = changes.family;
     if (changes.family != capture::kDefaultFamily) scene.capture.dot_spacing = 0;
+    scene.capture.parameters.clear();
   }
+  for (const auto& [name, value] : changes.parameters) scene.capture.parameters[name] = value;
+  capture::check_family_parameters(capture::pattern_family(scene.capture.family), scene.capture.parameters, "simulate");
   if (changes.dot_spacing) {
     if (*changes.dot_spacing == 1) throw InputError("--dot-spacing must be 0 (Gray code only) or at least 2");
     scene.capture.dot_spacing = *changes.dot_spacing;

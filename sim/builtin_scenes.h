@@ -29,13 +29,14 @@ Scene resolve_scene(const std::string& name_or_file, const std::string& rig = ""
 
 // What `rfrecon simulate` changes in the scene it resolves (docs/cli.md); each one left empty keeps the scene's.
 struct SceneChanges {
-  std::string rig;                         // a built-in rig replacing the camera and projector
-  cv::Size camera_size;                    // the camera's resolution, its field of view kept
-  cv::Size projector_size;                 // the same for the projector
-  std::optional<int> supersample;          // rays per pixel side
-  std::string family;                      // a pattern family; other than graycode, the dot spacing is 0 unless given
-  std::optional<int> dot_spacing;          // 0 (Gray code only) or at least 2: InputError for 1
-  std::optional<unsigned long long> seed;  // the frames' noise seed
+  std::string rig;                          // a built-in rig replacing the camera and projector
+  cv::Size camera_size;                     // the camera's resolution, its field of view kept
+  cv::Size projector_size;                  // the same for the projector
+  std::optional<int> supersample;           // rays per pixel side
+  std::string family;                       // a pattern family; other than graycode, the dot spacing is 0 unless given
+  std::map<std::string, int> parameters{};  // the family's parameters (replacing the scene's when family is given)
+  std::optional<int> dot_spacing;           // 0 (Gray code only) or at least 2: InputError for 1
+  std::optional<unsigned long long> seed;   // the frames' noise seed
 };
 
 // resolve_scene(name_or_file, changes.rig) with the other changes made.

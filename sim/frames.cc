@@ -55,6 +55,7 @@ cv::Mat camera_reading(const cv::Mat& linear, const CaptureSettings& s, std::uin
 capture::CaptureManifest make_manifest(const CaptureSettings& s, cv::Size camera_size, cv::Size projector_size) {
   capture::CaptureManifest manifest;
   manifest.family = s.family;
+  manifest.parameters = s.parameters;
   manifest.projector_size = projector_size;
   manifest.camera_size = camera_size;
   manifest.dot_spacing = s.dot_spacing;

@@ -27,15 +27,16 @@ struct RenderOptions {
 
 // How pattern frames are turned into camera readings (docs/sim.md, "Noise model").
 struct CaptureSettings {
-  std::string family = "graycode";       // the pattern family (host/capture/pattern_family.h)
-  int dot_spacing = 8;                   // graycode: s of the s x s dot grid; 0 = Gray code, white and black only
-  int bit_depth = 10;                    // 8, 10, 12 or 16
-  double black_level = 16.0;             // digital numbers added to every reading
-  double response_gamma = 1.0;           // reading = linear^(1/gamma); 1 = linear
-  double ambient = 0.0;                  // linear reading added to every pixel of every frame (full scale = 1)
-  double full_well_electrons = 20000.0;  // electrons at full scale (shot noise); 0 = no shot noise
-  double read_noise_dn = 0.5;            // Gaussian read noise, digital numbers (of bit_depth); 0 = none
-  std::string format = "png";            // "png" or "tiff"
+  std::string family = "graycode";          // the pattern family (host/capture/pattern_family.h)
+  std::map<std::string, int> parameters{};  // the family's parameters given (phase: phase_steps, phase_period)
+  int dot_spacing = 8;                      // graycode: s of the s x s dot grid; 0 = Gray code, white and black only
+  int bit_depth = 10;                       // 8, 10, 12 or 16
+  double black_level = 16.0;                // digital numbers added to every reading
+  double response_gamma = 1.0;              // reading = linear^(1/gamma); 1 = linear
+  double ambient = 0.0;                     // linear reading added to every pixel of every frame (full scale = 1)
+  double full_well_electrons = 20000.0;     // electrons at full scale (shot noise); 0 = no shot noise
+  double read_noise_dn = 0.5;               // Gaussian read noise, digital numbers (of bit_depth); 0 = none
+  std::string format = "png";               // "png" or "tiff"
 };
 
 struct Scene {

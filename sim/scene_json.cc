@@ -294,8 +294,8 @@ json object_to_json(const Object& o) {
 
 CaptureSettings parse_capture(const Reader& r, const json& j, const std::string& path) {
   r.check_keys(j, path,
-               {"family", "dot_spacing", "bit_depth", "black_level", "response_gamma", "ambient", "full_well_electrons",
-                "read_noise_dn", "format"});
+               {"family", "parameters", "dot_spacing", "bit_depth", "black_level", "response_gamma", "ambient",
+                "full_well_electrons", "read_noise_dn", "format"});
   CaptureSettings c;
   c.family = r.get<std::string>(j, path, "family", c.family);
   const auto families = capture::pattern_family_names();
@@ -303,6 +303,18 @@ CaptureSettings parse_capture(const Reader& r, const json& j, const std::string&
     std::string names;
     for (const auto& name : families) names += (names.empty() ? "" : ", ") + name;
     r.fail(Reader::join(path, "family"), "must be a pattern family (" + names + ")");
+  }
+  if (j.contains("parameters")) {
+    const json& parameters = j.at("parameters");
+    if (!parameters.is_object()) r.fail(Reader::join(path, "parameters"), "must be a JSON object");
+    for (const auto& item : parameters.items()) {
+      c.parameters[item.key()] = r.get<int>(parameters, Reader::join(path, "parameters"), item.key());
+    }
+    try {
+      capture::check_family_parameters(capture::pattern_family(c.family), c.parameters, "parameters");
+    } catch (const InputError& error) {
+      r.fail(Reader::join(path, "parameters"), error.what());
+    }
   }
   c.dot_spacing = r.get<int>(j, path, "dot_spacing", c.dot_spacing);
   if (c.dot_spacing < 0 || c.dot_spacing == 1) r.fail(Reader::join(path, "dot_spacing"), "must be 0 or >= 2");
@@ -407,6 +419,7 @@ json scene_to_json(const Scene& scene) {
             {"radiometry", {{"gain", scene.gain}, {"intensity", scene.intensity}}},
             {"capture",
              {{"family", c.family},
+              {"parameters", c.parameters},
               {"dot_spacing", c.dot_spacing},
               {"bit_depth", c.bit_depth},
               {"black_level", c.black_level},

@@ -47,6 +47,7 @@ capture::CaptureManifest scan_manifest(const Camera& camera, const CaptureRunOpt
   const CameraFormat format = camera.format();
   capture::CaptureManifest manifest;
   manifest.family = options.protocol.family;
+  manifest.parameters = options.protocol.parameters;
   manifest.projector_size = projector;
   manifest.camera_size = format.size;
   manifest.dot_spacing = options.protocol.dot_spacing;

@@ -86,6 +86,16 @@ cv::Size size_field(const json& object, const std::string& key, const fs::path& 
   return size;
 }
 
+// The optional object "parameters": whole numbers by name.
+std::map<std::string, int> parameters_field(const json& root, const fs::path& file) {
+  std::map<std::string, int> parameters;
+  if (!root.contains("parameters")) return parameters;
+  const json& object = root.at("parameters");
+  if (!object.is_object()) throw InputError(file.string() + ": field 'parameters' must be an object");
+  for (const auto& [name, value] : object.items()) parameters[name] = field<int>(object, name, "parameters.", file);
+  return parameters;
+}
+
 // A frame's file: a relative path without "..", NUL or empty parts, that stays inside the capture directory after
 // links are resolved (unless `paths` allows anywhere).
 void check_frame_path(const std::string& name, const fs::path& dir, FramePaths paths, const std::string& where,
@@ -123,7 +133,7 @@ Frame frame_from_json(const json& item, std::size_t index, const PatternFamily& 
 }  // namespace
 
 ProtocolOptions protocol_options(const CaptureManifest& manifest) {
-  return {manifest.projector_size, manifest.dot_spacing, manifest.family};
+  return {manifest.projector_size, manifest.dot_spacing, manifest.family, manifest.parameters};
 }
 
 void validate_manifest(const CaptureManifest& manifest, const std::string& where) {
@@ -150,6 +160,7 @@ void validate_manifest(const CaptureManifest& manifest, const std::string& where
   if (count(pattern_kind::kWhite) != 1 || count(pattern_kind::kBlack) != 1) {
     fail("needs exactly one white and one black frame");
   }
+  check_family_parameters(family, manifest.parameters, where);
   family.validate(manifest, where);
 }
 
@@ -201,6 +212,7 @@ CaptureManifest read_manifest(const fs::path& capture_dir, FramePaths frame_path
   manifest.camera_size = root.contains("camera_size") ? size_field(root, "camera_size", file) : cv::Size();
   manifest.family = optional_field(root, "family", std::string(kDefaultFamily), file);
   manifest.dot_spacing = optional_field(root, "dot_spacing", 0, file);
+  manifest.parameters = parameters_field(root, file);
   manifest.bit_depth = optional_field(root, "bit_depth", 8, file);
   manifest.black_level = optional_field(root, "black_level", 0.0, file);
   manifest.camera_response = optional_field(root, "camera_response", std::string("linear"), file);
@@ -240,6 +252,7 @@ void write_manifest(const CaptureManifest& manifest, const fs::path& capture_dir
             {"camera_response", manifest.camera_response},
             {"frames", frames}};
   if (!manifest.exposures_us.empty()) root["exposures_us"] = manifest.exposures_us;
+  if (!manifest.parameters.empty()) root["parameters"] = manifest.parameters;
   write_file_atomically(capture_dir / kManifestFileName, root.dump(2) + "\n");
 }
 

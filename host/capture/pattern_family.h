@@ -16,11 +16,23 @@
 
 namespace rfrecon::capture {
 
+// A whole-number option of a family: ProtocolOptions::parameters[name], the manifest's `parameters`, and
+// `--NAME` (underscores as dashes) on the command line.
+struct FamilyParameter {
+  std::string name;  // "phase_steps"
+  int default_value = 0;
+  int min = 0;
+  int max = 0;
+  std::string help;
+};
+
 class PatternFamily {
  public:
   virtual ~PatternFamily() = default;
   virtual std::string name() const = 0;  // the manifest's `family`, `--family`
   virtual std::string help() const = 0;  // one line for the commands' help
+  // Its parameters; none by default.
+  virtual std::vector<FamilyParameter> parameters() const { return {}; }
   // The patterns in projection order, one white and one black among them; options.projector_size is checked already.
   // Throws InputError for an option the family does not take.
   virtual std::vector<Pattern> sequence(const ProtocolOptions& options) const = 0;
@@ -47,6 +59,13 @@ std::vector<std::string> pattern_family_names();
 // Adds a family (e.g. from a static initializer of a scanner's own code); throws std::invalid_argument when its name
 // is taken.
 void register_pattern_family(std::shared_ptr<const PatternFamily> family);
+
+// The value of `name`, one of family's parameters, in `options` (its default when not given).
+int family_parameter(const PatternFamily& family, const ProtocolOptions& options, const std::string& name);
+
+// Throws InputError starting with `where` when a parameter given is not one of the family's or outside its range.
+void check_family_parameters(const PatternFamily& family, const std::map<std::string, int>& parameters,
+                             const std::string& where);
 
 // Reading manifest entry fields for read_entry: InputError "<where>field 'KEY' is missing" or "... has the wrong type".
 int entry_int(const nlohmann::json& entry, const std::string& key, const std::string& where);

@@ -32,6 +32,7 @@ CaptureManifest write_pattern_directory(const std::filesystem::path& out_dir, co
   manifest.family = protocol.family;
   manifest.projector_size = protocol.projector_size;
   manifest.dot_spacing = protocol.dot_spacing;
+  manifest.parameters = protocol.parameters;
   manifest.frames = protocol_frames(protocol);
   for (const auto& frame : manifest.frames)
     write_image(staging.path() / frame.file, render_pattern(frame.pattern, protocol));

@@ -18,6 +18,7 @@ void check_projector_size(cv::Size projector_size) {
 std::vector<Pattern> make_protocol(const ProtocolOptions& options) {
   const PatternFamily& family = pattern_family(options.family);
   check_projector_size(options.projector_size);
+  check_family_parameters(family, options.parameters, "pattern family " + family.name());
   return family.sequence(options);
 }
 

@@ -2,6 +2,7 @@
 // pattern family the capture uses (host/capture/pattern_family.h).
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,7 @@ struct ProtocolOptions {
   cv::Size projector_size;  // projector resolution in pixels
   int dot_spacing = 0;      // s of the s x s dot-grid scan; 0 = no dot grid (Gray code only)
   std::string family = kDefaultFamily;
+  std::map<std::string, int> parameters{};  // the family's parameters given (PatternFamily::parameters); others default
 };
 
 // The sequence of `options.family` (throws InputError for an unknown family, a projector under 2x2 or an option the

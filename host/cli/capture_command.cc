@@ -78,6 +78,7 @@ void run_capture(CaptureCommandOptions& o) {
   request.run.timeout = std::chrono::milliseconds(o.timeout_ms);
   request.run.protocol.family = o.protocol->family;
   request.run.protocol.dot_spacing = o.protocol->dot_spacing;
+  request.run.protocol.parameters = o.protocol->parameters;
   if (!o.projector_size.empty()) request.run.protocol.projector_size = parse_size(o.projector_size, "--projector-size");
   if (o.measure_latency) {
     const int frames = pipeline::measure_latency(request);

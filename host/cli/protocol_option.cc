@@ -1,6 +1,9 @@
 // --family and --dot-spacing: the registered families in the help, the dot spacing's default by family.
 #include "host/cli/protocol_option.h"
 
+#include <algorithm>
+#include <set>
+
 #include "host/capture/graycode_patterns.h"
 #include "host/capture/pattern_family.h"
 #include "host/cli/number_checks.h"
@@ -20,11 +23,30 @@ void add_protocol_options(CLI::App& command, const std::shared_ptr<capture::Prot
                           .add_option("--dot-spacing", protocol->dot_spacing,
                                       "graycode: dot grid spacing s (s x s frames); 0 = Gray code only [default: 8]")
                           ->check(zero_or_range(2, capture::kMaxDotSpacing, "Gray code only"));
-  command.parse_complete_callback([protocol, dot_spacing] {
+  auto parameters = std::make_shared<std::map<std::string, int>>();
+  add_family_parameter_options(command, parameters);
+  command.parse_complete_callback([protocol, dot_spacing, parameters] {
     if (dot_spacing->count() == 0) {
       protocol->dot_spacing = protocol->family == capture::kDefaultFamily ? kGraycodeDotSpacing : 0;
     }
+    protocol->parameters = *parameters;
   });
+}
+
+void add_family_parameter_options(CLI::App& command, const std::shared_ptr<std::map<std::string, int>>& parameters) {
+  std::set<std::string> added;
+  for (const auto& family : capture::pattern_family_names()) {
+    for (const auto& parameter : capture::pattern_family(family).parameters()) {
+      if (!added.insert(parameter.name).second) continue;
+      std::string flag = "--" + parameter.name;
+      std::replace(flag.begin(), flag.end(), '_', '-');
+      command
+          .add_option_function<int>(
+              flag, [parameters, name = parameter.name](const int& value) { (*parameters)[name] = value; },
+              parameter.help + " [default: " + std::to_string(parameter.default_value) + "]")
+          ->check(CLI::Range(parameter.min, parameter.max));
+    }
+  }
 }
 
 }  // namespace rfrecon::cli

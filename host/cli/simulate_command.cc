@@ -8,6 +8,7 @@
 #include "host/capture/pattern_family.h"
 #include "host/cli/commands.h"
 #include "host/cli/number_checks.h"
+#include "host/cli/protocol_option.h"
 #include "host/cli/size_option.h"
 #include "sim/builtin_rigs.h"
 #include "sim/builtin_scenes.h"
@@ -27,6 +28,7 @@ struct SimulateCommandOptions {
   std::string projector_size;
   std::optional<int> supersample;
   std::string family;
+  std::shared_ptr<std::map<std::string, int>> parameters = std::make_shared<std::map<std::string, int>>();
   std::optional<int> dot_spacing;
   int threads = 0;
 };
@@ -47,6 +49,7 @@ void run_simulate(const SimulateCommandOptions& o) {
   if (!o.projector_size.empty()) changes.projector_size = parse_size(o.projector_size, "--projector");
   changes.supersample = o.supersample;
   changes.family = o.family;
+  changes.parameters = *o.parameters;
   changes.dot_spacing = o.dot_spacing;
   changes.seed = o.seed;
   const sim::Scene scene = sim::resolve_scene(o.scene, changes);
@@ -73,6 +76,7 @@ void add_simulate_command(CLI::App& app) {
       ->check(CLI::Range(1, 32));
   command->add_option("--family", o->family, "Pattern family of the capture (default: the scene's, graycode)")
       ->check(CLI::IsMember(capture::pattern_family_names()));
+  add_family_parameter_options(*command, o->parameters);
   command
       ->add_option("--dot-spacing", o->dot_spacing,
                    "Dot grid spacing s of the capture; 0 = Gray code, white and black only (default: the scene's)")

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "host/capture/frame_read_ahead.h"
+#include "host/capture/pattern_family.h"
 #include "host/core/errors.h"
 #include "host/core/progress.h"
 #include "host/core/stage_clock.h"
@@ -114,6 +115,12 @@ OpenedCapture open_frames(const capture::FrameSource& frames, capture::CaptureMa
   setup.camera_size = manifest.camera_size;
   setup.projector_size = manifest.projector_size;
   setup.dot_spacing = manifest.dot_spacing;
+  setup.family = manifest.family;
+  const capture::PatternFamily& patterns = capture::pattern_family(manifest.family);
+  for (const auto& parameter : patterns.parameters()) {
+    setup.parameters[parameter.name] =
+        capture::family_parameter(patterns, capture::protocol_options(manifest), parameter.name);
+  }
   setup.thresholds = resolve_thresholds(setup.thresholds, manifest.bit_depth);
   opened.setup = setup;
   opened.manifest = std::move(manifest);
@@ -273,7 +280,7 @@ TransportRun compute_transport(const capture::FrameSource& frames, capture::Capt
     progress.advance();
     return frame;
   };
-  const OpenedCapture capture = open_frames(frames, std::move(manifest), setup, load);
+  const OpenedCapture capture = open_frames(frames, std::move(manifest), std::move(setup), load);
   auto accumulator = clock.time("setup", [&] { return make_accumulator(capture.setup); });
   Refinement refinement(capture, clock);
   CheckedFrames checks(capture, clock);
@@ -306,7 +313,7 @@ TransportRun compute_transport_on_devices(const capture::FrameSource& frames, ca
   Progress progress("transport", manifest.frames.size(), "frames");
   const auto load = [&](const capture::CaptureManifest& with_size, std::size_t i) { return frames.load(with_size, i); };
   OpenedCapture capture = clock.time("read frames", [&] {
-    auto opened = open_frames(frames, std::move(manifest), setup, load);
+    auto opened = open_frames(frames, std::move(manifest), std::move(setup), load);
     progress.advance(2);
     return opened;
   });

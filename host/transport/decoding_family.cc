@@ -5,12 +5,13 @@
 
 #include "host/core/named_registry.h"
 #include "host/transport/graycode_decoding.h"
+#include "host/transport/phase_decoding.h"
 
 namespace rfrecon::transport {
 
 namespace {
 NamedRegistry<DecodingFamily>& registry() {
-  static NamedRegistry<DecodingFamily> instance("decoding family", {graycode_decoding()});
+  static NamedRegistry<DecodingFamily> instance("decoding family", {graycode_decoding(), phase_decoding()});
   return instance;
 }
 }  // namespace

@@ -632,7 +632,12 @@ CompressedTransport read_transport(const fs::path& file) {
   CompressedTransport transport;
   transport.setup = setup;
   const std::string protocol = reader.string("protocol");
-  if (protocol != transport.protocol()) {
+  if (protocol != "gray" && protocol != "gray+dots") {
+    if (setup.dot_spacing != 0 || protocol.empty()) {
+      reader.fail("attribute 'protocol' is '" + excerpt(protocol) + "': a family's name needs dot_spacing 0");
+    }
+    transport.setup.family = protocol;  // another family's T
+  } else if (protocol != transport.protocol()) {
     reader.fail("attribute 'protocol' is '" + excerpt(protocol) + "', dot_spacing " +
                 std::to_string(setup.dot_spacing) + " means '" + transport.protocol() + "'");
   }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -64,8 +65,10 @@ inline Thresholds resolve_thresholds(Thresholds thresholds, int bit_depth) {
 struct TransportSetup {
   cv::Size camera_size;
   cv::Size projector_size;
-  int dot_spacing = 0;           // s of the s x s dot grid; 0 = Gray code only (one entry per row)
-  int entries_per_pixel = RF_K;  // K, by default the kernels' (kernels/common/params.h)
+  int dot_spacing = 0;                           // s of the s x s dot grid; 0 = Gray code only (one entry per row)
+  std::string family = capture::kDefaultFamily;  // the capture's pattern family
+  std::map<std::string, int> parameters{};       // the pattern family's parameters, defaults included
+  int entries_per_pixel = RF_K;                  // K, by default the kernels' (kernels/common/params.h)
   Thresholds thresholds;
   // The Gray and dot frames the accumulators take: linear CV_32F, or the camera's raw CV_8U or CV_16U samples, made
   // linear with `samples` by the kernels (white and black are linear CV_32F either way).
@@ -117,8 +120,11 @@ struct CompressedTransport {
   std::size_t camera_pixels() const { return static_cast<std::size_t>(setup.camera_size.area()); }
   std::size_t projector_pixels() const { return static_cast<std::size_t>(setup.projector_size.area()); }
   int k() const { return setup.entries_per_pixel; }
-  // "gray+dots" or "gray" (Gray code only).
-  std::string protocol() const { return setup.dot_spacing > 0 ? "gray+dots" : "gray"; }
+  // The graycode family's "gray+dots" or "gray" (Gray code only), or another family's name.
+  std::string protocol() const {
+    if (setup.family != capture::kDefaultFamily) return setup.family;
+    return setup.dot_spacing > 0 ? "gray+dots" : "gray";
+  }
 };
 
 // An empty transport for `setup`: gray codes 0, flags 0, every slot empty, energy 0, correspondence NaN. `storage`:

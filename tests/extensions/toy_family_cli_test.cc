@@ -54,7 +54,7 @@ TEST(ToyPatternFamily, PatternsCommandWritesTheFamilysImagesAndManifest) {
 
   const auto plain = run_cli("transport " + out.string() + " -o " + (dir.path() / "T.h5").string());
   EXPECT_EQ(plain.exit_code, 3) << plain.output;  // an input error naming the families it knows
-  EXPECT_NE(plain.output.find("unknown pattern family 'binary' (graycode)"), std::string::npos) << plain.output;
+  EXPECT_NE(plain.output.find("unknown pattern family 'binary' (graycode, phase)"), std::string::npos) << plain.output;
 }
 
 TEST(ToyPatternFamily, SimulatedCaptureDecodesToTheProjectorPixelSeen) {

@@ -150,8 +150,8 @@ def test_errors_name_what_is_wrong(session, capture, transport, plane, tmp_path)
     with pytest.raises(rfrecon.InputError, match="no-such-method.*" + ", ".join(rfrecon.depth_methods())):
         session.reconstruct(transport, rfrecon.read_rig(plane / "truth" / "rig.yaml"), "no-such-method")
     assert rfrecon.depth_methods()[:3] == ["triangulate", "integrate", "fused"]
-    assert rfrecon.pattern_families() == ["graycode"]
-    with pytest.raises(rfrecon.InputError, match="unknown pattern family 'stripes' \\(graycode\\)"):
+    assert rfrecon.pattern_families() == ["graycode", "phase"]
+    with pytest.raises(rfrecon.InputError, match="unknown pattern family 'stripes' \\(graycode, phase\\)"):
         rfrecon.make_manifest((64, 40), (80, 64), family="stripes")
     rig = rfrecon.read_rig(plane / "truth" / "rig.yaml")
     with pytest.raises(rfrecon.UsageError, match="'passes' is 0: a whole number from 1 to 20") as error:

@@ -1,0 +1,159 @@
+// The "phase" family's patterns, images, file names, manifest entries and completeness check.
+#include "host/capture/phase_patterns.h"
+
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <tuple>
+
+#include <nlohmann/json.hpp>
+
+#include "host/capture/graycode_patterns.h"
+#include "host/core/errors.h"
+#include "host/core/message_text.h"
+
+namespace rfrecon::capture {
+
+double phase_pattern_level(double x, int period, int step, int steps) {
+  const double two_pi = 2.0 * 3.14159265358979323846;
+  return 0.5 + 0.5 * std::cos(two_pi * x / period - two_pi * step / steps);
+}
+
+int phase_order(int x, int period) { return 2 * x / period; }
+
+int phase_order_bits(int n, int period) { return gray_bits(phase_order(n - 1, period) + 1); }
+
+namespace {
+
+bool is_phase(const Pattern& p) { return p.kind == pattern_kind::kPhaseColumn || p.kind == pattern_kind::kPhaseRow; }
+bool is_order(const Pattern& p) { return p.kind == pattern_kind::kOrderColumn || p.kind == pattern_kind::kOrderRow; }
+bool on_columns(const Pattern& p) {
+  return p.kind == pattern_kind::kPhaseColumn || p.kind == pattern_kind::kOrderColumn;
+}
+
+class PhaseFamily final : public PatternFamily {
+ public:
+  std::string name() const override { return "phase"; }
+  std::string help() const override {
+    return "N-step phase shifting of columns and rows, unwrapped by a Gray code of half periods";
+  }
+  std::vector<FamilyParameter> parameters() const override {
+    return {{kPhaseSteps, 4, 3, 64, "phase: steps N of each axis's sinusoid"},
+            {kPhasePeriod, 16, 4, 4096, "phase: period of the sinusoids, projector pixels"}};
+  }
+
+  std::vector<Pattern> sequence(const ProtocolOptions& options) const override {
+    if (options.dot_spacing != 0) throw InputError("the phase family takes no dot grid (dot spacing 0)");
+    const int steps = family_parameter(*this, options, kPhaseSteps);
+    const int period = family_parameter(*this, options, kPhasePeriod);
+    std::vector<Pattern> sequence(2);
+    sequence[1].kind = pattern_kind::kBlack;
+    for (const bool columns : {true, false}) {
+      const int n = columns ? options.projector_size.width : options.projector_size.height;
+      for (int bit = 0; bit < phase_order_bits(n, period); ++bit) {
+        for (const bool inverse : {false, true}) {
+          Pattern pattern;
+          pattern.kind = columns ? pattern_kind::kOrderColumn : pattern_kind::kOrderRow;
+          pattern.bit = bit;
+          pattern.inverse = inverse;
+          sequence.push_back(pattern);
+        }
+      }
+      for (int step = 0; step < steps; ++step) {
+        Pattern pattern;
+        pattern.kind = columns ? pattern_kind::kPhaseColumn : pattern_kind::kPhaseRow;
+        pattern.bit = step;
+        sequence.push_back(pattern);
+      }
+    }
+    return sequence;
+  }
+
+  cv::Mat render(const Pattern& pattern, const ProtocolOptions& options) const override {
+    const cv::Size size = options.projector_size;
+    cv::Mat image(size, CV_8UC1, cv::Scalar(pattern.kind == pattern_kind::kWhite ? 255 : 0));
+    if (!is_phase(pattern) && !is_order(pattern)) return image;
+    const int steps = family_parameter(*this, options, kPhaseSteps);
+    const int period = family_parameter(*this, options, kPhasePeriod);
+    const bool columns = on_columns(pattern);
+    const int bits = phase_order_bits(columns ? size.width : size.height, period);
+    for (int y = 0; y < size.height; ++y) {
+      auto* row = image.ptr<unsigned char>(y);
+      for (int x = 0; x < size.width; ++x) {
+        const int coordinate = columns ? x : y;
+        if (is_phase(pattern)) {
+          row[x] = static_cast<unsigned char>(
+              std::lround(255.0 * phase_pattern_level(coordinate, period, pattern.bit, steps)));
+        } else {
+          row[x] = gray_code_bit(phase_order(coordinate, period), pattern.bit, bits) != pattern.inverse ? 255 : 0;
+        }
+      }
+    }
+    return image;
+  }
+
+  std::string file_stem(const Pattern& pattern) const override {
+    char stem[64];
+    if (is_phase(pattern)) {
+      std::snprintf(stem, sizeof stem, "%s_s%02d", pattern.kind.c_str(), pattern.bit);
+    } else if (is_order(pattern)) {
+      std::snprintf(stem, sizeof stem, "%s_b%02d%s", pattern.kind.c_str(), pattern.bit, pattern.inverse ? "_inv" : "");
+    } else {
+      return pattern.kind;
+    }
+    return stem;
+  }
+
+  void write_entry(const Pattern& pattern, nlohmann::json& entry) const override {
+    if (is_phase(pattern)) entry["step"] = pattern.bit;
+    if (is_order(pattern)) {
+      entry["bit"] = pattern.bit;
+      entry["inverse"] = pattern.inverse;
+    }
+  }
+
+  void read_entry(const nlohmann::json& entry, const std::string& where, Pattern& pattern) const override {
+    if (is_phase(pattern)) {
+      pattern.bit = entry_int(entry, "step", where);
+    } else if (is_order(pattern)) {
+      pattern.bit = entry_int(entry, "bit", where);
+      pattern.inverse = entry_bool(entry, "inverse", where);
+    } else if (pattern.kind != pattern_kind::kWhite && pattern.kind != pattern_kind::kBlack) {
+      throw InputError(where + ": pattern '" + excerpt(pattern.kind) +
+                       "' is not one of the phase family's (white, black, phase_col, phase_row, order_col, "
+                       "order_row)");
+    }
+  }
+
+  void validate(const CaptureManifest& manifest, const std::string& where) const override {
+    const auto fail = [&](const std::string& what) { throw InputError(where + ": " + what); };
+    if (manifest.dot_spacing != 0) fail("the phase family takes no dot grid (dot_spacing 0)");
+    const ProtocolOptions options = protocol_options(manifest);
+    const int steps = family_parameter(*this, options, kPhaseSteps);
+    const int period = family_parameter(*this, options, kPhasePeriod);
+    std::set<std::tuple<std::string, int, bool>> seen;
+    for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
+      const Pattern& pattern = manifest.frames[i].pattern;
+      if (!is_phase(pattern) && !is_order(pattern)) continue;
+      const std::string frame = "frames[" + std::to_string(i) + "] (" + excerpt(manifest.frames[i].file) + "): ";
+      const int n = on_columns(pattern) ? manifest.projector_size.width : manifest.projector_size.height;
+      const int count = is_phase(pattern) ? steps : phase_order_bits(n, period);
+      if (pattern.bit < 0 || pattern.bit >= count) {
+        fail(frame + (is_phase(pattern) ? "step " : "order bit ") + std::to_string(pattern.bit) + " outside 0 to " +
+             std::to_string(count - 1));
+      }
+      if (!seen.insert({pattern.kind, pattern.bit, pattern.inverse}).second) fail(frame + "repeated frame");
+    }
+    const std::size_t expected = sequence(options).size() - 2;
+    if (seen.size() != expected) {
+      fail("incomplete phase sequence: " + std::to_string(seen.size()) + " of " + std::to_string(expected) +
+           " phase and order frames for " + std::to_string(steps) + " steps of period " + std::to_string(period));
+    }
+  }
+};
+
+}  // namespace
+
+std::shared_ptr<const PatternFamily> phase_family() { return std::make_shared<const PhaseFamily>(); }
+
+}  // namespace rfrecon::capture

@@ -1,0 +1,189 @@
+// The phase family's plan, its reference accumulator (on the host for every device) and the unwrapping.
+#include "host/transport/phase_decoding.h"
+
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "host/capture/pattern_family.h"
+#include "host/capture/phase_patterns.h"
+#include "host/transport/graycode_accumulator.h"
+
+namespace rfrecon::transport {
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
+enum PhaseStep : int { kOrderPairStep, kPhaseShiftStep };
+
+// A parameter of the setup, or the family's default where the setup has none (an accumulator made by hand).
+int parameter(const TransportSetup& setup, const char* name) {
+  capture::ProtocolOptions options;
+  options.parameters = setup.parameters;
+  return capture::family_parameter(capture::pattern_family("phase"), options, name);
+}
+
+bool on_columns(const capture::Pattern& pattern) {
+  return pattern.kind == capture::pattern_kind::kOrderColumn || pattern.kind == capture::pattern_kind::kPhaseColumn;
+}
+
+// Per camera pixel and axis: the order code's bits, whether every bit was contrasted, and the phase sums.
+class PhaseAccumulator final : public TransportAccumulator {
+ public:
+  explicit PhaseAccumulator(const TransportSetup& setup)
+      : t_(make_empty_transport(setup)),
+        steps_(parameter(setup, capture::kPhaseSteps)),
+        period_(parameter(setup, capture::kPhasePeriod)) {
+    for (int axis = 0; axis < 2; ++axis) {
+      order_[axis].assign(t_.camera_pixels(), 0);
+      sin_sum_[axis].assign(t_.camera_pixels(), 0.0f);
+      cos_sum_[axis].assign(t_.camera_pixels(), 0.0f);
+      low_contrast_[axis].assign(t_.camera_pixels(), 0);
+    }
+  }
+
+  void add(const TransportStep& step, const std::vector<cv::Mat>& frames, const cv::Mat& white,
+           const cv::Mat& black) override {
+    white_ = white;
+    black_ = black;
+    const int axis = step.args[0];
+    if (step.op == kOrderPairStep) {
+      const cv::Mat pattern = linear(frames.at(0));
+      const cv::Mat inverse = linear(frames.at(1));
+      const int bits = capture::phase_order_bits(
+          axis == 0 ? t_.setup.projector_size.width : t_.setup.projector_size.height, period_);
+      const std::uint32_t mask = 1u << (bits - 1 - step.args[1]);
+      for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
+        const float p = pattern.ptr<float>()[c], q = inverse.ptr<float>()[c];
+        if (p > q) order_[axis][c] |= mask;
+        if (std::fabs(p - q) <= t_.setup.thresholds.white) low_contrast_[axis][c] = 1;
+      }
+    } else if (step.op == kPhaseShiftStep) {
+      const cv::Mat frame = linear(frames.at(0));
+      const double delta = kTwoPi * step.args[1] / steps_;
+      const auto sin_delta = static_cast<float>(std::sin(delta));
+      const auto cos_delta = static_cast<float>(std::cos(delta));
+      for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
+        sin_sum_[axis][c] += frame.ptr<float>()[c] * sin_delta;
+        cos_sum_[axis][c] += frame.ptr<float>()[c] * cos_delta;
+      }
+    } else {
+      throw std::invalid_argument("PhaseAccumulator::add: not a phase step");
+    }
+  }
+
+  CompressedTransport finish() override {
+    const cv::Size projector = t_.setup.projector_size;
+    for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
+      const float lit = white_.ptr<float>()[c] - black_.ptr<float>()[c];
+      if (!(lit > t_.setup.thresholds.black)) {
+        t_.flags[c] = kFlagShadow;
+        continue;
+      }
+      double u[2];
+      bool contrasted = true;
+      for (int axis = 0; axis < 2; ++axis) {
+        // S = (N/2) B sin(theta), C = (N/2) B cos(theta): B is the sinusoid's amplitude in linear units.
+        const double sin_sum = sin_sum_[axis][c], cos_sum = cos_sum_[axis][c];
+        const double modulation = 2.0 / steps_ * std::hypot(sin_sum, cos_sum);
+        contrasted = contrasted && low_contrast_[axis][c] == 0 && modulation > t_.setup.thresholds.white;
+        u[axis] =
+            unwrap_phase(std::atan2(sin_sum, cos_sum), static_cast<int>(gray_to_binary(order_[axis][c])), period_);
+      }
+      const long qx = std::lround(u[0]), qy = std::lround(u[1]);
+      if (!contrasted) {
+        t_.flags[c] = kFlagLowContrast;
+      } else if (qx < 0 || qx >= projector.width || qy < 0 || qy >= projector.height) {
+        t_.flags[c] = kFlagOutOfRange;
+      } else {
+        t_.flags[c] = kFlagValid;
+        t_.gray_x[c] = static_cast<std::uint32_t>(qx);
+        t_.gray_y[c] = static_cast<std::uint32_t>(qy);
+        t_.correspondence[2 * c] = static_cast<float>(u[0]);
+        t_.correspondence[2 * c + 1] = static_cast<float>(u[1]);
+        const std::size_t row = c * static_cast<std::size_t>(t_.k());
+        t_.indices[row] = static_cast<std::int32_t>(qy * projector.width + qx);
+        t_.weights[row] = lit;
+        t_.direct_energy[c] = lit;
+      }
+    }
+    return std::move(t_);
+  }
+
+ private:
+  cv::Mat linear(const cv::Mat& frame) const {
+    return frame.depth() == CV_32F ? frame : capture::linearize_samples(frame, t_.setup.samples);
+  }
+
+  CompressedTransport t_;
+  int steps_;
+  int period_;
+  std::vector<std::uint32_t> order_[2];
+  std::vector<float> sin_sum_[2];
+  std::vector<float> cos_sum_[2];
+  std::vector<std::uint8_t> low_contrast_[2];
+  cv::Mat white_;
+  cv::Mat black_;
+};
+
+class PhaseDecoding final : public DecodingFamily {
+ public:
+  std::string name() const override { return "phase"; }
+
+  std::vector<TransportStep> plan(const capture::CaptureManifest& manifest) const override {
+    std::map<std::tuple<int, int, bool>, std::size_t> orders;  // (axis, bit, inverse) -> frame
+    std::vector<TransportStep> steps;
+    for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
+      const auto& pattern = manifest.frames[i].pattern;
+      const int axis = on_columns(pattern) ? 0 : 1;
+      if (pattern.kind == capture::pattern_kind::kOrderColumn || pattern.kind == capture::pattern_kind::kOrderRow) {
+        orders[{axis, pattern.bit, pattern.inverse}] = i;
+      } else if (pattern.kind == capture::pattern_kind::kPhaseColumn ||
+                 pattern.kind == capture::pattern_kind::kPhaseRow) {
+        steps.push_back({kPhaseShiftStep, {i}, {axis, pattern.bit}, "decode"});
+      }
+    }
+    for (const auto& [key, frame] : orders) {
+      const auto [axis, bit, inverse] = key;
+      if (!inverse) steps.push_back({kOrderPairStep, {frame, orders.at({axis, bit, true})}, {axis, bit}, "decode"});
+    }
+    steps.emplace_back();
+    return steps;
+  }
+
+  std::vector<cl::ProgramRequest> programs(const TransportSetup&, KernelEntry) const override { return {}; }
+
+  std::unique_ptr<TransportAccumulator> make_reference(const TransportSetup& setup) const override {
+    return std::make_unique<PhaseAccumulator>(setup);
+  }
+
+  // No kernels yet: each device's block of rows is decoded on the host.
+  std::unique_ptr<TransportAccumulator> make_device(const TransportSetup& setup, cl::DeviceContext&, cl::ProgramCache&,
+                                                    KernelEntry, CompressedTransport) const override {
+    return make_reference(setup);
+  }
+
+  std::unique_ptr<TransportRefinement> refinement(const TransportSetup&, const cv::Mat&,
+                                                  const cv::Mat&) const override {
+    return nullptr;
+  }
+};
+
+}  // namespace
+
+double unwrap_phase(double theta, int order, int period) {
+  double wrapped = theta / kTwoPi * period;  // in (-P/2, P/2]
+  if (wrapped < 0.0) wrapped += period;
+  // Pixels x of half period h span [h P / 2, (h + 1) P / 2), so coordinates [h P / 2 - 0.5, (h + 1) P / 2 - 0.5).
+  const double middle = order * 0.5 * period + 0.25 * period - 0.5;
+  const double fringe = std::round((middle - wrapped) / period);
+  return fringe * period + wrapped;
+}
+
+std::shared_ptr<const DecodingFamily> phase_decoding() { return std::make_shared<const PhaseDecoding>(); }
+
+}  // namespace rfrecon::transport
