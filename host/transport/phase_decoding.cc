@@ -1,4 +1,4 @@
-// The phase family's plan, its reference accumulator (on the host for every device) and the unwrapping.
+// The phase family's plan, its C++ reference accumulator, its programs and the unwrapping.
 #include "host/transport/phase_decoding.h"
 
 #include <cmath>
@@ -12,20 +12,13 @@
 #include "host/capture/pattern_family.h"
 #include "host/capture/phase_patterns.h"
 #include "host/transport/graycode_accumulator.h"
+#include "host/transport/phase_accumulators.h"
 
 namespace rfrecon::transport {
 
 namespace {
 
 constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
-enum PhaseStep : int { kOrderPairStep, kPhaseShiftStep };
-
-// A parameter of the setup, or the family's default where the setup has none (an accumulator made by hand).
-int parameter(const TransportSetup& setup, const char* name) {
-  capture::ProtocolOptions options;
-  options.parameters = setup.parameters;
-  return capture::family_parameter(capture::pattern_family("phase"), options, name);
-}
 
 bool on_columns(const capture::Pattern& pattern) {
   return pattern.kind == capture::pattern_kind::kOrderColumn || pattern.kind == capture::pattern_kind::kPhaseColumn;
@@ -36,8 +29,8 @@ class PhaseAccumulator final : public TransportAccumulator {
  public:
   explicit PhaseAccumulator(const TransportSetup& setup)
       : t_(make_empty_transport(setup)),
-        steps_(parameter(setup, capture::kPhaseSteps)),
-        period_(parameter(setup, capture::kPhasePeriod)) {
+        steps_(phase_parameter(setup, capture::kPhaseSteps)),
+        period_(phase_parameter(setup, capture::kPhasePeriod)) {
     for (int axis = 0; axis < 2; ++axis) {
       order_[axis].assign(t_.camera_pixels(), 0);
       sin_sum_[axis].assign(t_.camera_pixels(), 0.0f);
@@ -54,9 +47,7 @@ class PhaseAccumulator final : public TransportAccumulator {
     if (step.op == kOrderPairStep) {
       const cv::Mat pattern = linear(frames.at(0));
       const cv::Mat inverse = linear(frames.at(1));
-      const int bits = capture::phase_order_bits(
-          axis == 0 ? t_.setup.projector_size.width : t_.setup.projector_size.height, period_);
-      const std::uint32_t mask = 1u << (bits - 1 - step.args[1]);
+      const std::uint32_t mask = order_bit_mask(t_.setup, axis, step.args[1]);
       for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
         const float p = pattern.ptr<float>()[c], q = inverse.ptr<float>()[c];
         if (p > q) order_[axis][c] |= mask;
@@ -64,9 +55,7 @@ class PhaseAccumulator final : public TransportAccumulator {
       }
     } else if (step.op == kPhaseShiftStep) {
       const cv::Mat frame = linear(frames.at(0));
-      const double delta = kTwoPi * step.args[1] / steps_;
-      const auto sin_delta = static_cast<float>(std::sin(delta));
-      const auto cos_delta = static_cast<float>(std::cos(delta));
+      const auto [sin_delta, cos_delta] = phase_shift(step.args[1], steps_);
       for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
         sin_sum_[axis][c] += frame.ptr<float>()[c] * sin_delta;
         cos_sum_[axis][c] += frame.ptr<float>()[c] * cos_delta;
@@ -155,16 +144,18 @@ class PhaseDecoding final : public DecodingFamily {
     return steps;
   }
 
-  std::vector<cl::ProgramRequest> programs(const TransportSetup&, KernelEntry) const override { return {}; }
-
-  std::unique_ptr<TransportAccumulator> make_reference(const TransportSetup& setup) const override {
-    return std::make_unique<PhaseAccumulator>(setup);
+  std::vector<cl::ProgramRequest> programs(const TransportSetup& setup, KernelEntry entry) const override {
+    return phase_programs(setup, entry);
   }
 
-  // No kernels yet: each device's block of rows is decoded on the host.
-  std::unique_ptr<TransportAccumulator> make_device(const TransportSetup& setup, cl::DeviceContext&, cl::ProgramCache&,
-                                                    KernelEntry, CompressedTransport) const override {
-    return make_reference(setup);
+  std::unique_ptr<TransportAccumulator> make_reference(const TransportSetup& setup) const override {
+    return make_phase_reference_accumulator(setup);
+  }
+
+  std::unique_ptr<TransportAccumulator> make_device(const TransportSetup& setup, cl::DeviceContext& device,
+                                                    cl::ProgramCache& programs, KernelEntry entry,
+                                                    CompressedTransport storage) const override {
+    return make_phase_device_accumulator(setup, device, programs, entry, {}, std::move(storage));
   }
 
   std::unique_ptr<TransportRefinement> refinement(const TransportSetup&, const cv::Mat&,
@@ -174,6 +165,36 @@ class PhaseDecoding final : public DecodingFamily {
 };
 
 }  // namespace
+
+int phase_parameter(const TransportSetup& setup, const char* name) {
+  capture::ProtocolOptions options;
+  options.parameters = setup.parameters;
+  return capture::family_parameter(capture::pattern_family("phase"), options, name);
+}
+
+std::pair<float, float> phase_shift(int step, int steps) {
+  const double delta = kTwoPi * step / steps;
+  return {static_cast<float>(std::sin(delta)), static_cast<float>(std::cos(delta))};
+}
+
+std::uint32_t order_bit_mask(const TransportSetup& setup, int axis, int bit) {
+  const int period = phase_parameter(setup, capture::kPhasePeriod);
+  const int bits =
+      capture::phase_order_bits(axis == 0 ? setup.projector_size.width : setup.projector_size.height, period);
+  return 1u << (bits - 1 - bit);
+}
+
+std::unique_ptr<TransportAccumulator> make_phase_reference_accumulator(TransportSetup setup) {
+  setup.thresholds = resolve_thresholds(setup.thresholds, 8);
+  return std::make_unique<PhaseAccumulator>(setup);
+}
+
+std::vector<cl::ProgramRequest> phase_programs(const TransportSetup& setup, KernelEntry entry,
+                                               const std::string& extra) {
+  std::vector<cl::ProgramRequest> requests = transport_programs(setup, entry, extra);
+  requests[1] = {"transport/phase.cl", requests[0].options};
+  return requests;
+}
 
 double unwrap_phase(double theta, int order, int period) {
   double wrapped = theta / kTwoPi * period;  // in (-P/2, P/2]

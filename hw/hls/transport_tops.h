@@ -1,8 +1,8 @@
-// The HLS C++ top functions of the transport kernels for Vitis 2023.1 and later (decode_tops.cpp, compress_tops.cpp,
-// spmv_tops.cpp): the single work-item bodies of kernels/transport/gray_decode.h, compression.h and
-// sparse_products.h behind AXI interfaces, with the arguments and layout of kernels/transport/decode.cl, compress.cl
-// and spmv.cl (K = RF_K, batches of RF_FRAME_BATCH frames or RF_GRAY_PAIR_BATCH Gray pairs). Declared here for their C
-// simulation (tests/fpga/hls_csim_test.cc).
+// The HLS C++ top functions of the transport kernels for Vitis 2023.1 and later (decode_tops.cpp, phase_tops.cpp,
+// compress_tops.cpp, spmv_tops.cpp): the single work-item bodies of kernels/transport/gray_decode.h, phase_decode.h,
+// compression.h and sparse_products.h behind AXI interfaces, with the arguments and layout of
+// kernels/transport/decode.cl, phase.cl, compress.cl and spmv.cl (K = RF_K, batches of RF_FRAME_BATCH frames or
+// RF_GRAY_PAIR_BATCH Gray pairs). Declared here for their C simulation (tests/fpga/hls_csim_test.cc).
 #pragma once
 
 extern "C" {
@@ -11,6 +11,12 @@ void gray_pairs_single(const float* frames, int pair_count, const unsigned* pair
                        unsigned* code_x, unsigned* code_y, unsigned char* flags, unsigned n);
 void gray_finalize_single(const float* white, const float* black, float black_threshold, int projector_width,
                           int projector_height, unsigned* code_x, unsigned* code_y, unsigned char* flags, unsigned n);
+
+void phase_steps_single(const float* frames, int axis, int step_count, const float* shifts, float* sums, unsigned n);
+void phase_finalize_single(const float* white, const float* black, float black_threshold, float white_threshold,
+                           int steps, int period, int projector_width, int projector_height, int entries_per_pixel,
+                           unsigned* code_x, unsigned* code_y, const float* sums, unsigned char* flags, int* indices,
+                           float* weights, float* energy, float* correspondence, unsigned n);
 
 void dot_frames_single(const float* frames, int frame_count, const int* offsets, int spacing, int projector_width,
                        int projector_height, float noise_threshold, const float* black, const unsigned char* flags,

@@ -2,7 +2,8 @@
 // vendor attributes and pragmas of kernels/common/target.h, which PoCL's clang ignores, and the compression's
 // divisions by the compile-time dot spacings) and run on the first OpenCL device (PoCL in CI): the depth kernels
 // equal their NDRange twins built without a macro on the row tiles of the kernel tests, also with an interleave that
-// does not divide the tiles' rows (3); the transport kernels equal the C++ reference on the tiny captures. What this
+// does not divide the tiles' rows (3); the transport kernels, Gray code and phase shifting, equal the C++ reference on
+// the tiny captures. What this
 // shows: the macros leave the kernels' arithmetic unchanged; not what a vendor compiler makes of them.
 #include <string>
 #include <tuple>
@@ -13,8 +14,10 @@
 
 #include "host/cl/device_selection.h"
 #include "host/depth/row_solvers.h"
+#include "host/transport/phase_accumulators.h"
 #include "host/transport/spmv.h"
 #include "tests/depth/row_solver_inputs.h"
+#include "tests/transport/same_phase_transport.h"
 #include "tests/transport/same_transport.h"
 #include "tests/transport/test_capture_feed.h"
 
@@ -96,6 +99,20 @@ TEST_P(FpgaMacrosOnPocl, GrayPairsOverAFullAndAPartialBatchEqualReference) {
   auto single =
       transport::make_device_accumulator(setup, devices_.front(), programs_, KernelEntry::kSingleWorkItem, options());
   transport::testing::expect_same_transport(transport::testing::feed_all(*single, capture->sequence, linear), expected);
+}
+
+// The phase steps over a full and a partial batch of RF_FRAME_BATCH, the order pairs and the finalizing.
+TEST_P(FpgaMacrosOnPocl, PhaseSingleEqualsReference) {
+  constexpr int kSteps = RF_FRAME_BATCH + 2, kPeriod = 6;
+  const auto capture = transport::testing::tiny_phase_capture(kSteps, kPeriod);
+  const auto linear = transport::testing::linearize(capture.frames);
+  const auto setup = transport::testing::phase_setup_for(linear, kSteps, kPeriod, 2);
+  const auto expected = transport::testing::feed_plan(*transport::make_phase_reference_accumulator(setup), "phase",
+                                                      capture.sequence, linear, linear);
+  auto single = transport::make_phase_device_accumulator(setup, devices_.front(), programs_,
+                                                         KernelEntry::kSingleWorkItem, options());
+  transport::testing::expect_same_phase_transport(
+      transport::testing::feed_plan(*single, "phase", capture.sequence, linear, linear), expected);
 }
 
 INSTANTIATE_TEST_SUITE_P(

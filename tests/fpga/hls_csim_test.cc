@@ -2,11 +2,13 @@
 // (HLS pragmas ignored) against the C++ references: the row solvers on the inputs of the OpenCL kernel tests
 // (tests/depth/row_solver_inputs.h, as many rows as one interleaved group and a few more), in row tiles smaller than,
 // equal to and not dividing a group, with the parameters header's interleaves; the transport's
-// decode, compression and sparse products on the tiny captures of the transport kernel tests; the self-check.
+// decode, compression and sparse products and the phase decoding on the tiny captures of the transport kernel tests;
+// the self-check.
 #include <algorithm>
 #include <array>
 #include <functional>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -16,11 +18,14 @@
 #include "hls/depth_tops.h"
 #include "hls/selfcheck_tops.h"
 #include "hls/transport_tops.h"
+#include "host/capture/phase_patterns.h"
 #include "host/depth/row_solvers.h"
 #include "host/selfcheck/axpy.h"
+#include "host/transport/phase_accumulators.h"
 #include "host/transport/spmv.h"
 #include "kernels/transport/gray_decode.h"
 #include "tests/depth/row_solver_inputs.h"
+#include "tests/transport/same_phase_transport.h"
 #include "tests/transport/same_transport.h"
 #include "tests/transport/test_capture_feed.h"
 
@@ -222,6 +227,94 @@ TEST(HlsCsim, GrayPairsTopOverAFullAndAPartialBatchMatchesReference) {
   const auto expected = testing::feed_all(*reference, capture->sequence, linear);
   HlsAccumulator tops(setup);
   testing::expect_same_transport(testing::feed_all(tops, capture->sequence, linear), expected);
+}
+
+// The phase family on the HLS tops: phase steps RF_FRAME_BATCH of one axis per call, order pairs RF_GRAY_PAIR_BATCH
+// per call of gray_pairs_single, as the device accumulator batches them.
+class HlsPhaseAccumulator final : public TransportAccumulator {
+ public:
+  explicit HlsPhaseAccumulator(TransportSetup setup)
+      : steps_(phase_parameter(setup, capture::kPhaseSteps)), period_(phase_parameter(setup, capture::kPhasePeriod)) {
+    setup.thresholds = resolve_thresholds(setup.thresholds, 8);
+    t_ = make_empty_transport(setup);
+    n_ = static_cast<unsigned>(t_.camera_pixels());
+    batch_.resize(static_cast<std::size_t>(RF_FRAME_BATCH) * n_);
+    sums_.assign(4 * static_cast<std::size_t>(n_), 0.0f);
+  }
+
+  void add(const TransportStep& step, const std::vector<cv::Mat>& frames, const cv::Mat& white,
+           const cv::Mat& black) override {
+    white_ = white;
+    black_ = black;
+    const int axis = step.args[0];
+    if (step.op == kPhaseShiftStep) {
+      if (steps_pending_ > 0 && axis != axis_) add_steps();
+      axis_ = axis;
+      std::copy_n(frames.at(0).ptr<float>(), n_, batch_.begin() + static_cast<std::ptrdiff_t>(steps_pending_ * n_));
+      std::tie(shifts_[2 * steps_pending_], shifts_[2 * steps_pending_ + 1]) = phase_shift(step.args[1], steps_);
+      if (++steps_pending_ == RF_FRAME_BATCH) add_steps();
+    } else {
+      if (steps_pending_ > 0) add_steps();
+      const auto frame = batch_.begin() + static_cast<std::ptrdiff_t>(2 * pairs_pending_ * n_);
+      std::copy_n(frames.at(0).ptr<float>(), n_, frame);
+      std::copy_n(frames.at(1).ptr<float>(), n_, frame + n_);
+      pairs_[2 * pairs_pending_] = order_bit_mask(t_.setup, axis, step.args[1]);
+      pairs_[2 * pairs_pending_ + 1] = static_cast<unsigned>(axis);
+      if (++pairs_pending_ == RF_GRAY_PAIR_BATCH) add_pairs();
+    }
+  }
+
+  CompressedTransport finish() override {
+    if (steps_pending_ > 0) add_steps();
+    if (pairs_pending_ > 0) add_pairs();
+    phase_finalize_single(white_.ptr<float>(), black_.ptr<float>(), t_.setup.thresholds.black,
+                          t_.setup.thresholds.white, steps_, period_, t_.setup.projector_size.width,
+                          t_.setup.projector_size.height, t_.k(), t_.gray_x.data(), t_.gray_y.data(), sums_.data(),
+                          t_.flags.data(), t_.indices.data(), t_.weights.data(), t_.direct_energy.data(),
+                          t_.correspondence.data(), n_);
+    return std::move(t_);
+  }
+
+ private:
+  void add_steps() {
+    phase_steps_single(batch_.data(), axis_, static_cast<int>(steps_pending_), shifts_.data(), sums_.data(), n_);
+    steps_pending_ = 0;
+    shifts_.fill(0.0f);
+  }
+
+  void add_pairs() {
+    gray_pairs_single(batch_.data(), static_cast<int>(pairs_pending_), pairs_.data(), t_.setup.thresholds.white,
+                      t_.gray_x.data(), t_.gray_y.data(), t_.flags.data(), n_);
+    pairs_pending_ = 0;
+    pairs_.fill(0);
+  }
+
+  int steps_;
+  int period_;
+  CompressedTransport t_;
+  unsigned n_ = 0;
+  cv::Mat white_, black_;
+  std::vector<float> batch_;
+  std::vector<float> sums_;
+  int axis_ = 0;
+  unsigned steps_pending_ = 0;
+  std::array<float, 2 * RF_FRAME_BATCH> shifts_ = {};
+  unsigned pairs_pending_ = 0;
+  std::array<unsigned, 2 * RF_GRAY_PAIR_BATCH> pairs_ = {};
+};
+
+// 5 steps of period 4 (a partial batch per axis) and RF_FRAME_BATCH + 2 steps of period 6 (a full and a partial one).
+TEST(HlsCsim, PhaseTopsMatchReference) {
+  for (const auto& [steps, period] : {std::pair{5, 4}, std::pair{RF_FRAME_BATCH + 2, 6}}) {
+    SCOPED_TRACE("steps " + std::to_string(steps) + " period " + std::to_string(period));
+    const auto capture = testing::tiny_phase_capture(steps, period);
+    const auto linear = testing::linearize(capture.frames);
+    const auto setup = testing::phase_setup_for(linear, steps, period, RF_K);
+    const auto expected =
+        testing::feed_plan(*make_phase_reference_accumulator(setup), "phase", capture.sequence, linear, linear);
+    HlsPhaseAccumulator tops(setup);
+    testing::expect_same_phase_transport(testing::feed_plan(tops, "phase", capture.sequence, linear, linear), expected);
+  }
 }
 
 // The products sum in the references' order: bit for bit.

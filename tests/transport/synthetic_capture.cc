@@ -69,11 +69,16 @@ PlaneScene make_plane_scene(const SceneOptions& options) {
 
 std::vector<cv::Mat> render_frames(const PlaneScene& scene, const std::vector<capture::Pattern>& sequence,
                                    int dot_spacing, double noise_dn, unsigned seed) {
+  return render_frames(scene, sequence, capture::ProtocolOptions{scene.projector_size, dot_spacing}, noise_dn, seed);
+}
+
+std::vector<cv::Mat> render_frames(const PlaneScene& scene, const std::vector<capture::Pattern>& sequence,
+                                   const capture::ProtocolOptions& options, double noise_dn, unsigned seed) {
   std::mt19937 random(seed);
   std::normal_distribution<double> noise(0.0, noise_dn);
   std::vector<cv::Mat> frames;
   for (const auto& pattern : sequence) {
-    const cv::Mat projected = capture::render_pattern(pattern, {scene.projector_size, dot_spacing});
+    const cv::Mat projected = capture::render_pattern(pattern, options);
     Eigen::VectorXf light(scene.projector_size.area());
     for (int i = 0; i < light.size(); ++i) light[i] = projected.ptr<unsigned char>()[i] / 255.0f;
     const Eigen::VectorXf image = scene.transport * light;

@@ -10,6 +10,7 @@
 #include <opencv2/core.hpp>
 
 #include "host/capture/manifest.h"
+#include "host/capture/protocol.h"
 #include "tests/common/temp_dir.h"
 
 namespace rfrecon::transport::testing {
@@ -42,6 +43,9 @@ PlaneScene make_plane_scene(const SceneOptions& options);
 // The camera frames of `sequence`: reading = clamp(T L + ambient + noise) quantized to 8 bits, L in [0, 1].
 std::vector<cv::Mat> render_frames(const PlaneScene& scene, const std::vector<capture::Pattern>& sequence,
                                    int dot_spacing, double noise_dn, unsigned seed);
+// The same for the patterns of any family: `options` as capture::render_pattern takes them.
+std::vector<cv::Mat> render_frames(const PlaneScene& scene, const std::vector<capture::Pattern>& sequence,
+                                   const capture::ProtocolOptions& options, double noise_dn, unsigned seed);
 
 // Writes frames and manifest (8-bit, linear, black level 0) into `dir`; returns the manifest.
 capture::CaptureManifest write_capture(const std::filesystem::path& dir, const PlaneScene& scene,

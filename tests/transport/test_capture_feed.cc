@@ -5,7 +5,9 @@
 #include <random>
 
 #include "host/capture/graycode_patterns.h"
+#include "host/capture/phase_patterns.h"
 #include "host/capture/protocol.h"
+#include "host/transport/decoding_family.h"
 #include "kernels/transport/gray_decode.h"
 
 namespace rfrecon::transport::testing {
@@ -27,6 +29,24 @@ TinyCapture tiny_capture_of(cv::Size projector_size, int dot_spacing) {
 }  // namespace
 
 TinyCapture tiny_capture(int dot_spacing) { return tiny_capture_of({16, 12}, dot_spacing); }
+
+TinyCapture tiny_phase_capture(int steps, int period) {
+  SceneOptions options;
+  options.camera_size = {24, 20};
+  options.projector_size = {16, 12};
+  const capture::ProtocolOptions protocol{
+      options.projector_size, 0, "phase", {{capture::kPhaseSteps, steps}, {capture::kPhasePeriod, period}}};
+  TinyCapture capture{make_plane_scene(options), capture::make_protocol(protocol), {}};
+  capture.frames = render_frames(capture.scene, capture.sequence, protocol, 1.0, 7);
+  return capture;
+}
+
+TransportSetup phase_setup_for(const std::vector<cv::Mat>& frames, int steps, int period, int k) {
+  TransportSetup setup = setup_for(frames, {16, 12}, 0, k);
+  setup.family = "phase";
+  setup.parameters = {{capture::kPhaseSteps, steps}, {capture::kPhasePeriod, period}};
+  return setup;
+}
 
 std::optional<TinyCapture> tiny_gray_capture_over_batches() {
   constexpr int kBatch = RF_GRAY_PAIR_BATCH;
@@ -87,6 +107,28 @@ CompressedTransport feed_all(GraycodeAccumulator& accumulator, const std::vector
     if (sequence[i].kind == pattern_kind::kDot) {
       accumulator.add_dot_frame(sequence[i].dot_offset_x, sequence[i].dot_offset_y, frames[i]);
     }
+  }
+  return accumulator.finish();
+}
+
+CompressedTransport feed_plan(TransportAccumulator& accumulator, const std::string& family,
+                              const std::vector<capture::Pattern>& sequence, const std::vector<cv::Mat>& frames,
+                              const std::vector<cv::Mat>& linear_frames) {
+  capture::CaptureManifest manifest;
+  manifest.family = family;
+  cv::Mat white;
+  cv::Mat black;
+  for (std::size_t i = 0; i < sequence.size(); ++i) {
+    manifest.frames.push_back({});
+    manifest.frames.back().pattern = sequence[i];
+    if (sequence[i].kind == pattern_kind::kWhite) white = linear_frames[i];
+    if (sequence[i].kind == pattern_kind::kBlack) black = linear_frames[i];
+  }
+  for (const TransportStep& step : decoding_family(family).plan(manifest)) {
+    if (step.op == kFinishStep) break;
+    std::vector<cv::Mat> step_frames;
+    for (const std::size_t i : step.frames) step_frames.push_back(frames[i]);
+    accumulator.add(step, step_frames, white, black);
   }
   return accumulator.finish();
 }

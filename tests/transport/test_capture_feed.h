@@ -1,8 +1,9 @@
-// Feeds in-memory capture frames to a GraycodeAccumulator in protocol order (the all-at-once path of the tests), and
-// the tiny capture the kernel tests feed.
+// Feeds in-memory capture frames to an accumulator in protocol order (the all-at-once path of the tests), and the
+// tiny captures the kernel tests feed.
 #pragma once
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "host/capture/manifest.h"
@@ -26,6 +27,11 @@ TinyCapture tiny_capture(int dot_spacing);
 // projector would not be tiny).
 std::optional<TinyCapture> tiny_gray_capture_over_batches();
 
+// The tiny capture through the phase family's sequence on a 16 x 12 projector: `steps` steps of period `period`.
+TinyCapture tiny_phase_capture(int steps, int period);
+// The setup of a phase capture of `frames`: the family and its parameters, K entries per pixel.
+TransportSetup phase_setup_for(const std::vector<cv::Mat>& frames, int steps, int period, int k);
+
 // The tiny capture's compressed T as the C++ reference accumulator makes it, K entries per pixel.
 CompressedTransport tiny_reference_transport(int dot_spacing, int k);
 
@@ -45,6 +51,12 @@ CompressedTransport feed_all(GraycodeAccumulator& accumulator, const std::vector
 // The same with the Gray and dot frames from `frames` (raw samples, say) and white and black from `linear_frames`.
 CompressedTransport feed_all(GraycodeAccumulator& accumulator, const std::vector<capture::Pattern>& sequence,
                              const std::vector<cv::Mat>& frames, const std::vector<cv::Mat>& linear_frames);
+
+// The steps of `family`'s plan for `sequence`, then finish(): the steps' frames from `frames`, white and black from
+// `linear_frames`.
+CompressedTransport feed_plan(TransportAccumulator& accumulator, const std::string& family,
+                              const std::vector<capture::Pattern>& sequence, const std::vector<cv::Mat>& frames,
+                              const std::vector<cv::Mat>& linear_frames);
 
 // The setup of a capture of `frames` (camera size of the first frame).
 TransportSetup setup_for(const std::vector<cv::Mat>& frames, cv::Size projector_size, int dot_spacing, int k);

@@ -1,0 +1,48 @@
+// The phase family's accumulator steps and its two accumulators: the plain C++ reference (phase_decoding.cc) and the
+// OpenCL kernels of kernels/transport/phase.cl, with decode.cl's Gray pairs for the order codes
+// (phase_device_accumulator.cc). Both take the steps PhaseDecoding::plan makes: every phase step, then every order
+// pair; the frames of the setup's frame depth, white and black linear CV_32F.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "host/cl/device_context.h"
+#include "host/cl/program_cache.h"
+#include "host/transport/accumulator.h"
+#include "host/transport/transport_types.h"
+
+namespace rfrecon::transport {
+
+// TransportStep::op of the phase family: an order pair (frames pattern and inverse; args axis, bit from the most
+// significant) and a phase step (frame; args axis, step index). Axis 0: columns.
+enum PhaseStep : int { kOrderPairStep, kPhaseShiftStep };
+
+// A parameter of the setup (capture::kPhaseSteps, kPhasePeriod), or the family's default where the setup has none.
+int phase_parameter(const TransportSetup& setup, const char* name);
+
+// (sin, cos) of step `step`'s phase shift 2 pi step / steps, rounded to float: what both accumulators multiply by.
+std::pair<float, float> phase_shift(int step, int steps);
+
+// The bit mask of order bit `bit` (0 = most significant) of `axis` in its code word.
+std::uint32_t order_bit_mask(const TransportSetup& setup, int axis, int bit);
+
+// Automatic thresholds (<= 0) are resolved for an 8-bit camera, as make_reference_accumulator does.
+std::unique_ptr<TransportAccumulator> make_phase_reference_accumulator(TransportSetup setup);
+
+// decode.cl (the order pairs) and phase.cl, with the NDRange entries' sample type and `extra` options.
+std::vector<cl::ProgramRequest> phase_programs(const TransportSetup& setup, KernelEntry entry,
+                                               const std::string& extra = {});
+
+// The kernels' state (the order codes, the phase sums, the flags, T) stays on the device until finish(). Phase steps
+// go RF_FRAME_BATCH of one axis per launch, order pairs RF_GRAY_PAIR_BATCH. `build_options` as
+// make_device_accumulator's; `storage`: an earlier transport whose memory it may reuse.
+std::unique_ptr<TransportAccumulator> make_phase_device_accumulator(TransportSetup setup, cl::DeviceContext& device,
+                                                                    cl::ProgramCache& programs, KernelEntry entry,
+                                                                    const std::string& build_options = {},
+                                                                    CompressedTransport storage = {});
+
+}  // namespace rfrecon::transport

@@ -1,0 +1,64 @@
+// Phase-shifting decoding (bodies in transport/phase_decode.h); the order codes go through decode.cl's Gray pairs.
+//   phase_steps_ndrange: a batch of up to RF_FRAME_BATCH phase steps of one axis per launch, as RF_FRAME_BATCH frame
+//                        buffers (common/frame_batch.h; unused ones repeat frame 0) of RF_SAMPLE made linear with
+//                        (sample_black, sample_scale), RF_LANES pixels per work-item, one after another.
+//   phase_steps_single:  the same batch in one buffer of linear floats (step p at p * n), one pixel per iteration
+//                        (FPGA boards).
+//   Both take `shifts`, RF_FRAME_BATCH (sin, cos) pairs of the steps' phase shifts, and add to `sums` (four planes
+//   of n floats: S and C of the columns, then of the rows).
+//   phase_finalize_*:    phase, modulation, unwrapping with the order codes, flags, T's entry and the sub-pixel
+//                        correspondence (NDRange: RF_LANES pixels per work-item).
+#include "common/frame_batch.h"
+#include "common/target.h"
+#include "transport/phase_decode.h"
+
+__kernel void phase_steps_ndrange(RF_FRAME_PARAMETERS, float sample_black, float sample_scale, int axis, int step_count,
+                                  __global const float* restrict shifts, __global float* restrict sums, uint n) {
+  const uint c0 = get_global_id(0) * RF_LANES;
+  __global const RF_SAMPLE* frames[RF_FRAME_BATCH] = RF_FRAME_BUFFERS;
+  const RfSampleMap map = {sample_black, sample_scale};
+  float local_shifts[2 * RF_FRAME_BATCH];
+  rf_load_phase_shifts(shifts, local_shifts);
+  const uint end = min(c0 + RF_LANES, n);
+  for (uint c = c0; c < end; ++c) {
+    float values[RF_FRAME_BATCH];
+#pragma unroll
+    for (int p = 0; p < RF_FRAME_BATCH; ++p) values[p] = rf_linear_sample(frames[p], c, map);
+    rf_phase_steps_add(c, n, axis, step_count, values, local_shifts, sums);
+  }
+}
+
+RF_SINGLE_TASK
+__kernel void phase_steps_single(__global const float* restrict frames, int axis, int step_count,
+                                 __global const float* restrict shifts, __global float* restrict sums, uint n) {
+  rf_phase_steps_pixels(n, axis, step_count, shifts, frames, sums);
+}
+
+__kernel void phase_finalize_ndrange(__global const float* restrict white, __global const float* restrict black,
+                                     float black_threshold, float white_threshold, int steps, int period,
+                                     int projector_width, int projector_height, int entries_per_pixel,
+                                     __global uint* restrict code_x, __global uint* restrict code_y,
+                                     __global const float* restrict sums, __global uchar* restrict flags,
+                                     __global int* restrict indices, __global float* restrict weights,
+                                     __global float* restrict energy, __global float* restrict correspondence, uint n) {
+  const uint c0 = get_global_id(0) * RF_LANES;
+  const uint end = min(c0 + RF_LANES, n);
+  for (uint c = c0; c < end; ++c) {
+    rf_phase_finalize_pixel(c, n, white[c], black[c], black_threshold, white_threshold, steps, period, projector_width,
+                            projector_height, entries_per_pixel, code_x, code_y, sums, flags, indices, weights, energy,
+                            correspondence);
+  }
+}
+
+RF_SINGLE_TASK
+__kernel void phase_finalize_single(__global const float* restrict white, __global const float* restrict black,
+                                    float black_threshold, float white_threshold, int steps, int period,
+                                    int projector_width, int projector_height, int entries_per_pixel,
+                                    __global uint* restrict code_x, __global uint* restrict code_y,
+                                    __global const float* restrict sums, __global uchar* restrict flags,
+                                    __global int* restrict indices, __global float* restrict weights,
+                                    __global float* restrict energy, __global float* restrict correspondence, uint n) {
+  rf_phase_finalize_pixels(n, white, black, black_threshold, white_threshold, steps, period, projector_width,
+                           projector_height, entries_per_pixel, code_x, code_y, sums, flags, indices, weights, energy,
+                           correspondence);
+}

@@ -1,0 +1,140 @@
+// Phase-shifting decoding per camera pixel (the "phase" pattern family, docs/method.md "Phase shifting"), shared by
+// kernels/transport/phase.cl and the HLS C++ top (hw/hls/). State per pixel: the sums S = sum I_k sin(delta_k) and
+// C = sum I_k cos(delta_k) of each axis's phase steps, in four planes of n floats (sums[(2 axis) n + c] holds S,
+// sums[(2 axis + 1) n + c] holds C; axis 0: columns); each axis's order code (Gray code of the half-period index) is
+// decoded by the Gray pair kernels (transport/gray_decode.h) into code_x / code_y, with their low-contrast flag.
+// Frames are linear camera responses in [0, 1]; thresholds in the same units.
+#ifndef RFRECON_KERNELS_TRANSPORT_PHASE_DECODE_H
+#define RFRECON_KERNELS_TRANSPORT_PHASE_DECODE_H
+
+#include "common/params.h"
+#include "common/portable.h"
+#include "common/target.h"
+#include "transport/flags.h"
+#include "transport/gray_decode.h"
+#ifdef __OPENCL_VERSION__
+#define RF_ATAN2 atan2
+#define RF_HYPOT hypot
+#define RF_ROUND round
+#else
+#define RF_ATAN2 std::atan2
+#define RF_HYPOT std::hypot
+#define RF_ROUND std::round
+#endif
+
+#define RF_TWO_PI 6.28318530717958647692f
+
+// A batch of step_count <= RF_FRAME_BATCH phase steps of one axis at pixel c: step p's frame value times
+// shifts[2p] = sin(delta_p) and shifts[2p + 1] = cos(delta_p) added to the axis's sums, in the batch's order.
+// `values[p]` is step p's linear frame value at c.
+RF_INLINE void rf_phase_steps_add(unsigned c, unsigned n, int axis, int step_count, const float* values,
+                                  const float* shifts, RF_GLOBAL float* sums) {
+  const size_t s = (size_t)(2 * axis) * n + c;
+  const size_t k = (size_t)(2 * axis + 1) * n + c;
+  float sin_sum = sums[s];
+  float cos_sum = sums[k];
+  RF_UNROLL
+  for (int p = 0; p < RF_FRAME_BATCH; ++p) {
+    // Selects rather than branches: one straight datapath on FPGAs.
+    const float value = p < step_count ? values[p] : 0.0f;
+    sin_sum += value * shifts[2 * p];
+    cos_sum += value * shifts[2 * p + 1];
+  }
+  sums[s] = sin_sum;
+  sums[k] = cos_sum;
+}
+
+// The batch's RF_FRAME_BATCH (sin, cos) pairs, copied from `shifts` into a private array.
+RF_INLINE void rf_load_phase_shifts(RF_GLOBAL const float* shifts, float* local_shifts) {
+  RF_UNROLL
+  for (int p = 0; p < 2 * RF_FRAME_BATCH; ++p) local_shifts[p] = shifts[p];
+}
+
+// The unwrapped projector coordinate (pixel centres at integers) from the wrapped phase theta of an axis and its
+// half-period index `order`, period `period`: as transport::unwrap_phase (host/transport/phase_decoding.h), in float.
+RF_INLINE float rf_unwrap_phase(float theta, unsigned order, int period) {
+  float wrapped = theta / RF_TWO_PI * (float)period;
+  if (wrapped < 0.0f) wrapped += (float)period;
+  const float middle = (float)order * 0.5f * (float)period + 0.25f * (float)period - 0.5f;
+  return RF_ROUND((middle - wrapped) / (float)period) * (float)period + wrapped;
+}
+
+// Pixel c's flags and, where valid, its sub-pixel correspondence, its projector pixel (code_x / code_y, 0 elsewhere)
+// and T's one entry at that pixel (white - black, row c * entries_per_pixel): shadow where white - black <=
+// black_threshold, else low contrast where an order pair was (the flag the Gray pair kernels set) or an axis's
+// modulation 2 / N hypot(S, C) is <= white_threshold, else out of range, else valid. Every other field is left as
+// the empty transport has it.
+RF_INLINE void rf_phase_finalize_pixel(unsigned c, unsigned n, float white, float black, float black_threshold,
+                                       float white_threshold, int steps, int period, int projector_width,
+                                       int projector_height, int entries_per_pixel, RF_GLOBAL unsigned* code_x,
+                                       RF_GLOBAL unsigned* code_y, RF_GLOBAL const float* sums,
+                                       RF_GLOBAL unsigned char* flags, RF_GLOBAL int* indices, RF_GLOBAL float* weights,
+                                       RF_GLOBAL float* energy, RF_GLOBAL float* correspondence) {
+  const float lit = white - black;
+  const unsigned order_x = rf_gray_to_binary(code_x[c]);
+  const unsigned order_y = rf_gray_to_binary(code_y[c]);
+  const float sin_x = sums[c], cos_x = sums[(size_t)n + c];
+  const float sin_y = sums[(size_t)2 * n + c], cos_y = sums[(size_t)3 * n + c];
+  const float modulation_x = 2.0f / (float)steps * RF_HYPOT(sin_x, cos_x);
+  const float modulation_y = 2.0f / (float)steps * RF_HYPOT(sin_y, cos_y);
+  const float u = rf_unwrap_phase(RF_ATAN2(sin_x, cos_x), order_x, period);
+  const float v = rf_unwrap_phase(RF_ATAN2(sin_y, cos_y), order_y, period);
+  const float qx = RF_ROUND(u), qy = RF_ROUND(v);  // halves away from zero, as the reference's lround
+  const int contrasted = (flags[c] & (unsigned char)RF_FLAG_LOW_CONTRAST) == 0 && modulation_x > white_threshold &&
+                         modulation_y > white_threshold;
+  const int in_range = qx >= 0.0f && qx < (float)projector_width && qy >= 0.0f && qy < (float)projector_height;
+  unsigned char f = (unsigned char)RF_FLAG_VALID;
+  if (!(lit > black_threshold)) {
+    f = (unsigned char)RF_FLAG_SHADOW;
+  } else if (!contrasted) {
+    f = (unsigned char)RF_FLAG_LOW_CONTRAST;
+  } else if (!in_range) {
+    f = (unsigned char)RF_FLAG_OUT_OF_RANGE;
+  }
+  flags[c] = f;
+  const int valid = f == (unsigned char)RF_FLAG_VALID;
+  code_x[c] = valid ? (unsigned)qx : 0u;
+  code_y[c] = valid ? (unsigned)qy : 0u;
+  if (valid) {
+    const size_t row = (size_t)c * (size_t)entries_per_pixel;
+    indices[row] = (int)qy * projector_width + (int)qx;
+    weights[row] = lit;
+    energy[c] = lit;
+    correspondence[2 * (size_t)c] = u;
+    correspondence[2 * (size_t)c + 1] = v;
+  }
+}
+
+// The single work-item loops over the n pixels (the OpenCL `_single` entries and the HLS tops). phase_steps: the
+// batch's frames in one array, step p's at p * n; its shifts copied on chip first.
+RF_INLINE void rf_phase_steps_pixels(unsigned n, int axis, int step_count, RF_GLOBAL const float* shifts,
+                                     RF_GLOBAL const float* frames, RF_GLOBAL float* sums) {
+  float local_shifts[2 * RF_FRAME_BATCH] RF_PARTITION_COMPLETE;
+  rf_load_phase_shifts(shifts, local_shifts);
+  RF_PIPELINE_II(1)
+  for (unsigned c = 0; c < n; ++c) {
+    RF_HLS_PIPELINE
+    float values[RF_FRAME_BATCH] RF_PARTITION_COMPLETE;
+    RF_UNROLL
+    for (int p = 0; p < RF_FRAME_BATCH; ++p) values[p] = p < step_count ? frames[(size_t)p * n + c] : 0.0f;
+    rf_phase_steps_add(c, n, axis, step_count, values, local_shifts, sums);
+  }
+}
+
+RF_INLINE void rf_phase_finalize_pixels(unsigned n, RF_GLOBAL const float* white, RF_GLOBAL const float* black,
+                                        float black_threshold, float white_threshold, int steps, int period,
+                                        int projector_width, int projector_height, int entries_per_pixel,
+                                        RF_GLOBAL unsigned* code_x, RF_GLOBAL unsigned* code_y,
+                                        RF_GLOBAL const float* sums, RF_GLOBAL unsigned char* flags,
+                                        RF_GLOBAL int* indices, RF_GLOBAL float* weights, RF_GLOBAL float* energy,
+                                        RF_GLOBAL float* correspondence) {
+  RF_PIPELINE_II(1)
+  for (unsigned c = 0; c < n; ++c) {
+    RF_HLS_PIPELINE
+    rf_phase_finalize_pixel(c, n, white[c], black[c], black_threshold, white_threshold, steps, period, projector_width,
+                            projector_height, entries_per_pixel, code_x, code_y, sums, flags, indices, weights, energy,
+                            correspondence);
+  }
+}
+
+#endif  // RFRECON_KERNELS_TRANSPORT_PHASE_DECODE_H

@@ -1,0 +1,76 @@
+// The phase family's kernels (kernels/transport/phase.cl, with decode.cl's Gray pairs for the order codes) against
+// its C++ reference on the tiny plane capture, through both entries on every device, from linear and from raw 8-bit
+// frames (same_phase_transport.h). The reference itself decodes most of the plane to within 0.3 projector pixel of the
+// truth, so the comparison is not over empty transports. Tiny sizes: CI reruns these under oclgrind.
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "host/cl/device_selection.h"
+#include "host/transport/phase_accumulators.h"
+#include "kernels/common/params.h"
+#include "tests/transport/same_phase_transport.h"
+#include "tests/transport/test_capture_feed.h"
+
+namespace rfrecon::transport {
+namespace {
+
+constexpr KernelEntry kEntries[] = {KernelEntry::kNdRange, KernelEntry::kSingleWorkItem};
+
+struct PhaseCase {
+  int steps;
+  int period;
+};
+
+// 5 steps of period 4 (one partial batch per axis); RF_FRAME_BATCH + 2 steps of period 6 (a full and a partial one).
+constexpr PhaseCase kCases[] = {{5, 4}, {RF_FRAME_BATCH + 2, 6}};
+
+class PhaseKernelTest : public ::testing::Test {
+ protected:
+  cl::ProgramCache programs_;
+  std::vector<cl::DeviceContext> devices_ = cl::open_devices("");
+};
+
+TEST_F(PhaseKernelTest, StepsOrderPairsAndFinalizeMatchReference) {
+  for (const PhaseCase phase : kCases) {
+    SCOPED_TRACE("steps " + std::to_string(phase.steps) + " period " + std::to_string(phase.period));
+    const auto capture = testing::tiny_phase_capture(phase.steps, phase.period);
+    const auto linear = testing::linearize(capture.frames);
+    auto setup = testing::phase_setup_for(linear, phase.steps, phase.period, 3);
+    const auto expected =
+        testing::feed_plan(*make_phase_reference_accumulator(setup), "phase", capture.sequence, linear, linear);
+
+    std::size_t valid = 0, close = 0;
+    for (std::size_t c = 0; c < expected.camera_pixels(); ++c) {
+      if ((expected.flags[c] & kFlagValid) == 0) continue;
+      ++valid;
+      const auto truth = capture.scene.correspondence.at<cv::Vec2f>(static_cast<int>(c));
+      close +=
+          std::hypot(expected.correspondence[2 * c] - truth[0], expected.correspondence[2 * c + 1] - truth[1]) < 0.3
+              ? 1
+              : 0;
+    }
+    ASSERT_GT(valid, expected.camera_pixels() / 2) << "the reference must decode most of the plane";
+    EXPECT_GT(close, valid * 9 / 10) << "the reference's correspondences must lie near the truth";
+
+    setup.frame_depth = CV_8U;
+    setup.samples = {0.0f, 1.0f / 255.0f};
+    for (auto& device : devices_) {
+      for (const auto entry : kEntries) {
+        SCOPED_TRACE(cl::describe(device.info()) + (entry == KernelEntry::kNdRange ? " ndrange" : " single"));
+        setup.frame_depth = CV_32F;
+        auto accumulator = make_phase_device_accumulator(setup, device, programs_, entry);
+        testing::expect_same_phase_transport(
+            testing::feed_plan(*accumulator, "phase", capture.sequence, linear, linear), expected);
+        setup.frame_depth = CV_8U;  // raw samples: linear in the NDRange kernels, on the host for the single ones
+        auto raw = make_phase_device_accumulator(setup, device, programs_, entry);
+        testing::expect_same_phase_transport(
+            testing::feed_plan(*raw, "phase", capture.sequence, capture.frames, linear), expected);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rfrecon::transport
