@@ -51,7 +51,7 @@ cv::Mat Capture::frame(std::size_t index) const {
 }
 
 Manifest make_manifest(cv::Size projector_size, cv::Size camera_size, int bit_depth, int dot_spacing,
-                       const std::string& family) {
+                       const std::string& family, const std::map<std::string, int>& parameters) {
   check_image_size(projector_size, "make_manifest: projector");
   check_image_size(camera_size, "make_manifest: camera");
   Manifest manifest;
@@ -60,6 +60,7 @@ Manifest make_manifest(cv::Size projector_size, cv::Size camera_size, int bit_de
   manifest.camera_size = camera_size;
   manifest.bit_depth = bit_depth;
   manifest.dot_spacing = dot_spacing;
+  manifest.parameters = parameters;
   try {
     manifest.frames = capture::protocol_frames(capture::protocol_options(manifest));
   } catch (const InputError& error) {

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -128,9 +129,12 @@ class Capture {
 
 // The manifest of `family`'s sequence for a rig (graycode: white, black, Gray code of both axes with inverses, then the
 // dot grid of `dot_spacing`, 0 for none), frames named as `rfrecon patterns` names them (000_white.png, ...), with the
-// camera's fields. InputError for an unknown family or an option it does not take.
+// camera's fields and the family's `parameters` (pattern_family(family).parameters(); absent ones take their defaults,
+// phase: phase_steps, phase_period, phase_ratio). InputError for an unknown family, an option or a parameter it does
+// not take, or a parameter out of its range.
 Manifest make_manifest(cv::Size projector_size, cv::Size camera_size, int bit_depth = 8, int dot_spacing = 8,
-                       const std::string& family = capture::kDefaultFamily);
+                       const std::string& family = capture::kDefaultFamily,
+                       const std::map<std::string, int>& parameters = {});
 // The image to show on the projector for frame `index` of `manifest` (CV_8U, projector size).
 cv::Mat pattern_image(const Manifest& manifest, std::size_t index);
 

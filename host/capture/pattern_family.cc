@@ -60,11 +60,13 @@ void check_family_parameters(const PatternFamily& family, const std::map<std::st
       problem += family.name() + " family's";
       throw InputError(problem);
     }
-    if (given.second < it->min || given.second > it->max) {
+    const bool zero = given.second == 0 && !it->zero_means.empty();
+    if (!zero && (given.second < it->min || given.second > it->max)) {
       problem += ": parameter " + name;
       problem += " = " + std::to_string(given.second);
       problem += " is outside " + std::to_string(it->min);
       problem += " to " + std::to_string(it->max);
+      if (!it->zero_means.empty()) problem += " (or 0: " + it->zero_means + ")";
       throw InputError(problem);
     }
   }

@@ -24,6 +24,7 @@ struct FamilyParameter {
   int min = 0;
   int max = 0;
   std::string help;
+  std::string zero_means{};  // non-empty: 0 is also allowed, and means this (e.g. "Gray code unwrapping")
 };
 
 class PatternFamily {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
+#include <stdexcept>
+#include <string>
 #include <tuple>
 
 #include <nlohmann/json.hpp>
@@ -23,6 +25,15 @@ int phase_order(int x, int period) { return 2 * x / period; }
 
 int phase_order_bits(int n, int period) { return gray_bits(phase_order(n - 1, period) + 1); }
 
+std::vector<int> phase_periods(int n, int period, int ratio) {
+  std::vector<int> periods{period};
+  if (ratio == 0) return periods;
+  if (ratio < 2) throw std::invalid_argument("phase_periods: ratio " + std::to_string(ratio) + " under 2");
+  while (periods.back() * (ratio - 1) < n) periods.push_back(periods.back() * ratio);
+  periods.push_back(n + periods.back());
+  return periods;
+}
+
 namespace {
 
 bool is_phase(const Pattern& p) { return p.kind == pattern_kind::kPhaseColumn || p.kind == pattern_kind::kPhaseRow; }
@@ -35,22 +46,26 @@ class PhaseFamily final : public PatternFamily {
  public:
   std::string name() const override { return "phase"; }
   std::string help() const override {
-    return "N-step phase shifting of columns and rows, unwrapped by a Gray code of half periods";
+    return "N-step phase shifting of columns and rows, unwrapped by a Gray code of half periods or by longer periods";
   }
   std::vector<FamilyParameter> parameters() const override {
     return {{kPhaseSteps, 4, 3, 64, "phase: steps N of each axis's sinusoid"},
-            {kPhasePeriod, 16, 4, 4096, "phase: period of the sinusoids, projector pixels"}};
+            {kPhasePeriod, 16, 4, 4096, "phase: period of the sinusoids, projector pixels"},
+            {kPhaseRatio, 0, 2, 64,
+             "phase: unwrap by sinusoids of periods P, P R, P R^2, ... (R); 0 = by a Gray code of half periods",
+             "Gray code of half periods"}};
   }
 
   std::vector<Pattern> sequence(const ProtocolOptions& options) const override {
     if (options.dot_spacing != 0) throw InputError("the phase family takes no dot grid (dot spacing 0)");
     const int steps = family_parameter(*this, options, kPhaseSteps);
     const int period = family_parameter(*this, options, kPhasePeriod);
+    const int ratio = family_parameter(*this, options, kPhaseRatio);
     std::vector<Pattern> sequence(2);
     sequence[1].kind = pattern_kind::kBlack;
     for (const bool columns : {true, false}) {
       const int n = columns ? options.projector_size.width : options.projector_size.height;
-      for (int bit = 0; bit < phase_order_bits(n, period); ++bit) {
+      for (int bit = 0; ratio == 0 && bit < phase_order_bits(n, period); ++bit) {
         for (const bool inverse : {false, true}) {
           Pattern pattern;
           pattern.kind = columns ? pattern_kind::kOrderColumn : pattern_kind::kOrderRow;
@@ -59,11 +74,15 @@ class PhaseFamily final : public PatternFamily {
           sequence.push_back(pattern);
         }
       }
-      for (int step = 0; step < steps; ++step) {
-        Pattern pattern;
-        pattern.kind = columns ? pattern_kind::kPhaseColumn : pattern_kind::kPhaseRow;
-        pattern.bit = step;
-        sequence.push_back(pattern);
+      // Coarsest period first: the order in which they unwrap.
+      for (int level = static_cast<int>(phase_periods(n, period, ratio).size()) - 1; level >= 0; --level) {
+        for (int step = 0; step < steps; ++step) {
+          Pattern pattern;
+          pattern.kind = columns ? pattern_kind::kPhaseColumn : pattern_kind::kPhaseRow;
+          pattern.bit = step;
+          pattern.level = level;
+          sequence.push_back(pattern);
+        }
       }
     }
     return sequence;
@@ -76,14 +95,16 @@ class PhaseFamily final : public PatternFamily {
     const int steps = family_parameter(*this, options, kPhaseSteps);
     const int period = family_parameter(*this, options, kPhasePeriod);
     const bool columns = on_columns(pattern);
-    const int bits = phase_order_bits(columns ? size.width : size.height, period);
+    const int n = columns ? size.width : size.height;
+    const int bits = phase_order_bits(n, period);
+    const int level_period = phase_periods(n, period, family_parameter(*this, options, kPhaseRatio)).at(pattern.level);
     for (int y = 0; y < size.height; ++y) {
       auto* row = image.ptr<unsigned char>(y);
       for (int x = 0; x < size.width; ++x) {
         const int coordinate = columns ? x : y;
         if (is_phase(pattern)) {
           row[x] = static_cast<unsigned char>(
-              std::lround(255.0 * phase_pattern_level(coordinate, period, pattern.bit, steps)));
+              std::lround(255.0 * phase_pattern_level(coordinate, level_period, pattern.bit, steps)));
         } else {
           row[x] = gray_code_bit(phase_order(coordinate, period), pattern.bit, bits) != pattern.inverse ? 255 : 0;
         }
@@ -94,7 +115,9 @@ class PhaseFamily final : public PatternFamily {
 
   std::string file_stem(const Pattern& pattern) const override {
     char stem[64];
-    if (is_phase(pattern)) {
+    if (is_phase(pattern) && pattern.level > 0) {
+      std::snprintf(stem, sizeof stem, "%s_l%d_s%02d", pattern.kind.c_str(), pattern.level, pattern.bit);
+    } else if (is_phase(pattern)) {
       std::snprintf(stem, sizeof stem, "%s_s%02d", pattern.kind.c_str(), pattern.bit);
     } else if (is_order(pattern)) {
       std::snprintf(stem, sizeof stem, "%s_b%02d%s", pattern.kind.c_str(), pattern.bit, pattern.inverse ? "_inv" : "");
@@ -106,6 +129,7 @@ class PhaseFamily final : public PatternFamily {
 
   void write_entry(const Pattern& pattern, nlohmann::json& entry) const override {
     if (is_phase(pattern)) entry["step"] = pattern.bit;
+    if (is_phase(pattern) && pattern.level > 0) entry["level"] = pattern.level;
     if (is_order(pattern)) {
       entry["bit"] = pattern.bit;
       entry["inverse"] = pattern.inverse;
@@ -115,6 +139,7 @@ class PhaseFamily final : public PatternFamily {
   void read_entry(const nlohmann::json& entry, const std::string& where, Pattern& pattern) const override {
     if (is_phase(pattern)) {
       pattern.bit = entry_int(entry, "step", where);
+      pattern.level = entry.contains("level") ? entry_int(entry, "level", where) : 0;
     } else if (is_order(pattern)) {
       pattern.bit = entry_int(entry, "bit", where);
       pattern.inverse = entry_bool(entry, "inverse", where);
@@ -131,18 +156,26 @@ class PhaseFamily final : public PatternFamily {
     const ProtocolOptions options = protocol_options(manifest);
     const int steps = family_parameter(*this, options, kPhaseSteps);
     const int period = family_parameter(*this, options, kPhasePeriod);
-    std::set<std::tuple<std::string, int, bool>> seen;
+    const int ratio = family_parameter(*this, options, kPhaseRatio);
+    std::set<std::tuple<std::string, int, bool, int>> seen;
     for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
       const Pattern& pattern = manifest.frames[i].pattern;
       if (!is_phase(pattern) && !is_order(pattern)) continue;
       const std::string frame = "frames[" + std::to_string(i) + "] (" + excerpt(manifest.frames[i].file) + "): ";
       const int n = on_columns(pattern) ? manifest.projector_size.width : manifest.projector_size.height;
+      if (is_order(pattern) && ratio != 0) fail(frame + "an order code frame, but phase_ratio unwraps by periods");
       const int count = is_phase(pattern) ? steps : phase_order_bits(n, period);
       if (pattern.bit < 0 || pattern.bit >= count) {
         fail(frame + (is_phase(pattern) ? "step " : "order bit ") + std::to_string(pattern.bit) + " outside 0 to " +
              std::to_string(count - 1));
       }
-      if (!seen.insert({pattern.kind, pattern.bit, pattern.inverse}).second) fail(frame + "repeated frame");
+      const int levels = static_cast<int>(phase_periods(n, period, ratio).size());
+      if (pattern.level < 0 || pattern.level >= levels) {
+        fail(frame + "level " + std::to_string(pattern.level) + " outside 0 to " + std::to_string(levels - 1));
+      }
+      if (!seen.insert({pattern.kind, pattern.bit, pattern.inverse, pattern.level}).second) {
+        fail(frame + "repeated frame");
+      }
     }
     const std::size_t expected = sequence(options).size() - 2;
     if (seen.size() != expected) {

@@ -28,6 +28,7 @@ struct Pattern {
   bool inverse = false;   // code patterns: the inverted image of the pair
   int dot_offset_x = -1;  // dot grid: lit pixels have x % spacing == dot_offset_x ...
   int dot_offset_y = -1;  // ... and y % spacing == dot_offset_y
+  int level = 0;          // phase steps: the frequency, 0 = the finest period (host/capture/phase_patterns.h)
 };
 
 // The family of captures whose manifest names none: Gray code with a dot grid (host/capture/graycode_patterns.h).

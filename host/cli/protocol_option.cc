@@ -44,7 +44,8 @@ void add_family_parameter_options(CLI::App& command, const std::shared_ptr<std::
           .add_option_function<int>(
               flag, [parameters, name = parameter.name](const int& value) { (*parameters)[name] = value; },
               parameter.help + " [default: " + std::to_string(parameter.default_value) + "]")
-          ->check(CLI::Range(parameter.min, parameter.max));
+          ->check(parameter.zero_means.empty() ? CLI::Validator(CLI::Range(parameter.min, parameter.max))
+                                               : zero_or_range(parameter.min, parameter.max, parameter.zero_means));
     }
   }
 }

@@ -1,7 +1,8 @@
 // The phase family's accumulator steps and its two accumulators: the plain C++ reference (phase_decoding.cc) and the
 // OpenCL kernels of kernels/transport/phase.cl, with decode.cl's Gray pairs for the order codes
 // (phase_device_accumulator.cc). Both take the steps PhaseDecoding::plan makes: every phase step, then every order
-// pair; the frames of the setup's frame depth, white and black linear CV_32F.
+// pair, or for each axis its periods' steps from the coarsest, each but the finest followed by its fold; the frames of
+// the setup's frame depth, white and black linear CV_32F.
 #pragma once
 
 #include <cstdint>
@@ -18,8 +19,12 @@
 namespace rfrecon::transport {
 
 // TransportStep::op of the phase family: an order pair (frames pattern and inverse; args axis, bit from the most
-// significant) and a phase step (frame; args axis, step index). Axis 0: columns.
-enum PhaseStep : int { kOrderPairStep, kPhaseShiftStep };
+// significant), a phase step (frame; args axis, step index) and, after the steps of every period but the finest, the
+// fold of their sums into the axis's unwrapped estimate (no frame; args axis, level). Axis 0: columns.
+enum PhaseStep : int { kOrderPairStep, kPhaseShiftStep, kPhaseFoldStep };
+
+// The periods of an axis (capture::phase_periods for the setup's projector and parameters), finest first.
+std::vector<int> axis_periods(const TransportSetup& setup, int axis);
 
 // A parameter of the setup (capture::kPhaseSteps, kPhasePeriod), or the family's default where the setup has none.
 int phase_parameter(const TransportSetup& setup, const char* name);
@@ -37,8 +42,8 @@ std::unique_ptr<TransportAccumulator> make_phase_reference_accumulator(Transport
 std::vector<cl::ProgramRequest> phase_programs(const TransportSetup& setup, KernelEntry entry,
                                                const std::string& extra = {});
 
-// The kernels' state (the order codes, the phase sums, the flags, T) stays on the device until finish(). Phase steps
-// go RF_FRAME_BATCH of one axis per launch, order pairs RF_GRAY_PAIR_BATCH. `build_options` as
+// The kernels' state (the order codes, the phase sums, the unwrapped estimates, the flags, T) stays on the device until
+// finish(). Phase steps go RF_FRAME_BATCH of one axis per launch, order pairs RF_GRAY_PAIR_BATCH. `build_options` as
 // make_device_accumulator's; `storage`: an earlier transport whose memory it may reuse.
 std::unique_ptr<TransportAccumulator> make_phase_device_accumulator(TransportSetup setup, cl::DeviceContext& device,
                                                                     cl::ProgramCache& programs, KernelEntry entry,

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <stdexcept>
 #include <tuple>
@@ -24,15 +25,18 @@ bool on_columns(const capture::Pattern& pattern) {
   return pattern.kind == capture::pattern_kind::kOrderColumn || pattern.kind == capture::pattern_kind::kPhaseColumn;
 }
 
-// Per camera pixel and axis: the order code's bits, whether every bit was contrasted, and the phase sums.
+// Per camera pixel and axis: the order code's bits or the estimate unwrapped from the longer periods, whether every
+// order bit and period was contrasted, and the phase sums of the period being added.
 class PhaseAccumulator final : public TransportAccumulator {
  public:
   explicit PhaseAccumulator(const TransportSetup& setup)
       : t_(make_empty_transport(setup)),
         steps_(phase_parameter(setup, capture::kPhaseSteps)),
-        period_(phase_parameter(setup, capture::kPhasePeriod)) {
+        by_order_(phase_parameter(setup, capture::kPhaseRatio) == 0) {
     for (int axis = 0; axis < 2; ++axis) {
+      periods_[axis] = axis_periods(setup, axis);
       order_[axis].assign(t_.camera_pixels(), 0);
+      estimate_[axis].assign(t_.camera_pixels(), 0.0);
       sin_sum_[axis].assign(t_.camera_pixels(), 0.0f);
       cos_sum_[axis].assign(t_.camera_pixels(), 0.0f);
       low_contrast_[axis].assign(t_.camera_pixels(), 0);
@@ -60,6 +64,8 @@ class PhaseAccumulator final : public TransportAccumulator {
         sin_sum_[axis][c] += frame.ptr<float>()[c] * sin_delta;
         cos_sum_[axis][c] += frame.ptr<float>()[c] * cos_delta;
       }
+    } else if (step.op == kPhaseFoldStep) {
+      fold(axis, step.args[1]);
     } else {
       throw std::invalid_argument("PhaseAccumulator::add: not a phase step");
     }
@@ -76,12 +82,11 @@ class PhaseAccumulator final : public TransportAccumulator {
       double u[2];
       bool contrasted = true;
       for (int axis = 0; axis < 2; ++axis) {
-        // S = (N/2) B sin(theta), C = (N/2) B cos(theta): B is the sinusoid's amplitude in linear units.
-        const double sin_sum = sin_sum_[axis][c], cos_sum = cos_sum_[axis][c];
-        const double modulation = 2.0 / steps_ * std::hypot(sin_sum, cos_sum);
-        contrasted = contrasted && low_contrast_[axis][c] == 0 && modulation > t_.setup.thresholds.white;
-        u[axis] =
-            unwrap_phase(std::atan2(sin_sum, cos_sum), static_cast<int>(gray_to_binary(order_[axis][c])), period_);
+        const Phase phase = phase_at(axis, c);
+        contrasted = contrasted && low_contrast_[axis][c] == 0 && phase.modulation > t_.setup.thresholds.white;
+        const int period = periods_[axis].front();
+        u[axis] = by_order_ ? unwrap_phase(phase.theta, static_cast<int>(gray_to_binary(order_[axis][c])), period)
+                            : unwrap_near(phase.theta, estimate_[axis][c], period);
       }
       const long qx = std::lround(u[0]), qy = std::lround(u[1]);
       if (!contrasted) {
@@ -104,14 +109,41 @@ class PhaseAccumulator final : public TransportAccumulator {
   }
 
  private:
+  struct Phase {
+    double theta;       // wrapped phase, rad
+    double modulation;  // the sinusoid's amplitude B, linear units
+  };
+
+  // S = (N/2) B sin(theta), C = (N/2) B cos(theta) of the axis's sums at pixel c.
+  Phase phase_at(int axis, std::size_t c) const {
+    const double sin_sum = sin_sum_[axis][c], cos_sum = cos_sum_[axis][c];
+    return {std::atan2(sin_sum, cos_sum), 2.0 / steps_ * std::hypot(sin_sum, cos_sum)};
+  }
+
+  // The sums of period `level` unwrapped near the estimate of the next coarser one (the axis's middle for the
+  // coarsest), then cleared for the next finer period.
+  void fold(int axis, int level) {
+    const int n = axis == 0 ? t_.setup.projector_size.width : t_.setup.projector_size.height;
+    const bool coarsest = level + 1 == static_cast<int>(periods_[axis].size());
+    for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
+      const Phase phase = phase_at(axis, c);
+      if (!(phase.modulation > t_.setup.thresholds.white)) low_contrast_[axis][c] = 1;
+      const double estimate = coarsest ? 0.5 * (n - 1) : estimate_[axis][c];
+      estimate_[axis][c] = unwrap_near(phase.theta, estimate, periods_[axis].at(level));
+      sin_sum_[axis][c] = cos_sum_[axis][c] = 0.0f;
+    }
+  }
+
   cv::Mat linear(const cv::Mat& frame) const {
     return frame.depth() == CV_32F ? frame : capture::linearize_samples(frame, t_.setup.samples);
   }
 
   CompressedTransport t_;
   int steps_;
-  int period_;
+  bool by_order_;
+  std::vector<int> periods_[2];
   std::vector<std::uint32_t> order_[2];
+  std::vector<double> estimate_[2];
   std::vector<float> sin_sum_[2];
   std::vector<float> cos_sum_[2];
   std::vector<std::uint8_t> low_contrast_[2];
@@ -123,9 +155,11 @@ class PhaseDecoding final : public DecodingFamily {
  public:
   std::string name() const override { return "phase"; }
 
+  // Per axis: its periods' steps from the coarsest, in manifest order within a period, each period but the finest
+  // folded after its steps; then the order pairs.
   std::vector<TransportStep> plan(const capture::CaptureManifest& manifest) const override {
-    std::map<std::tuple<int, int, bool>, std::size_t> orders;  // (axis, bit, inverse) -> frame
-    std::vector<TransportStep> steps;
+    std::map<std::tuple<int, int, bool>, std::size_t> orders;                               // (axis, bit, inverse)
+    std::map<std::pair<int, int>, std::vector<TransportStep>, std::greater<>> phase_steps;  // (axis, level) inverted
     for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
       const auto& pattern = manifest.frames[i].pattern;
       const int axis = on_columns(pattern) ? 0 : 1;
@@ -133,8 +167,13 @@ class PhaseDecoding final : public DecodingFamily {
         orders[{axis, pattern.bit, pattern.inverse}] = i;
       } else if (pattern.kind == capture::pattern_kind::kPhaseColumn ||
                  pattern.kind == capture::pattern_kind::kPhaseRow) {
-        steps.push_back({kPhaseShiftStep, {i}, {axis, pattern.bit}, "decode"});
+        phase_steps[{1 - axis, pattern.level}].push_back({kPhaseShiftStep, {i}, {axis, pattern.bit}, "decode"});
       }
+    }
+    std::vector<TransportStep> steps;
+    for (const auto& [key, level_steps] : phase_steps) {
+      steps.insert(steps.end(), level_steps.begin(), level_steps.end());
+      if (key.second > 0) steps.push_back({kPhaseFoldStep, {}, {1 - key.first, key.second}, "decode"});
     }
     for (const auto& [key, frame] : orders) {
       const auto [axis, bit, inverse] = key;
@@ -177,6 +216,12 @@ std::pair<float, float> phase_shift(int step, int steps) {
   return {static_cast<float>(std::sin(delta)), static_cast<float>(std::cos(delta))};
 }
 
+std::vector<int> axis_periods(const TransportSetup& setup, int axis) {
+  return capture::phase_periods(axis == 0 ? setup.projector_size.width : setup.projector_size.height,
+                                phase_parameter(setup, capture::kPhasePeriod),
+                                phase_parameter(setup, capture::kPhaseRatio));
+}
+
 std::uint32_t order_bit_mask(const TransportSetup& setup, int axis, int bit) {
   const int period = phase_parameter(setup, capture::kPhasePeriod);
   const int bits =
@@ -196,13 +241,15 @@ std::vector<cl::ProgramRequest> phase_programs(const TransportSetup& setup, Kern
   return requests;
 }
 
-double unwrap_phase(double theta, int order, int period) {
+double unwrap_near(double theta, double estimate, int period) {
   double wrapped = theta / kTwoPi * period;  // in (-P/2, P/2]
   if (wrapped < 0.0) wrapped += period;
-  // Pixels x of half period h span [h P / 2, (h + 1) P / 2), so coordinates [h P / 2 - 0.5, (h + 1) P / 2 - 0.5).
-  const double middle = order * 0.5 * period + 0.25 * period - 0.5;
-  const double fringe = std::round((middle - wrapped) / period);
-  return fringe * period + wrapped;
+  return std::round((estimate - wrapped) / period) * period + wrapped;
+}
+
+// Pixels x of half period h span [h P / 2, (h + 1) P / 2), so coordinates [h P / 2 - 0.5, (h + 1) P / 2 - 0.5).
+double unwrap_phase(double theta, int order, int period) {
+  return unwrap_near(theta, order * 0.5 * period + 0.25 * period - 0.5, period);
 }
 
 std::shared_ptr<const DecodingFamily> phase_decoding() { return std::make_shared<const PhaseDecoding>(); }

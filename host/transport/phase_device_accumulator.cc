@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "host/capture/phase_patterns.h"
 #include "host/cl/kernel_launch.h"
@@ -23,7 +24,8 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
       : setup_(setup),
         device_(device),
         steps_(phase_parameter(setup, capture::kPhaseSteps)),
-        period_(phase_parameter(setup, capture::kPhasePeriod)),
+        by_order_(phase_parameter(setup, capture::kPhaseRatio) == 0),
+        periods_{axis_periods(setup, 0), axis_periods(setup, 1)},
         frames_(setup, device, entry, kBatch, transport_private_bytes(setup.entries_per_pixel)),
         state_(make_empty_transport(setup, std::move(storage))) {
     if (setup.entries_per_pixel < 1) throw std::invalid_argument("transport: K must be at least 1");
@@ -32,6 +34,7 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
     const ::cl::Program phase = programs.get(device, requests[1].kernel_path, requests[1].options);
     order_pairs_ = cl::make_kernel(decode, "gray_pairs", entry);
     phase_steps_ = cl::make_kernel(phase, "phase_steps", entry);
+    fold_ = cl::make_kernel(phase, "phase_fold", entry);
     finalize_ = cl::make_kernel(phase, "phase_finalize", entry);
 
     const ::cl::Context& context = device.context();
@@ -39,6 +42,7 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
     shifts_buffer_ = cl::make_buffer<float>(context, shifts_.size());
     const std::vector<float> zeros(4 * state_.camera_pixels(), 0.0f);
     sums_ = cl::upload(context, zeros.data(), zeros.size(), CL_MEM_READ_WRITE);
+    estimates_ = cl::upload(context, zeros.data(), zeros.size() / 2, CL_MEM_READ_WRITE);
     // T's arrays, the order codes in gray_x / gray_y until phase_finalize writes the projector pixels there.
     code_x_ = cl::share(context, state_.gray_x);
     code_y_ = cl::share(context, state_.gray_y);
@@ -69,6 +73,9 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
       pairs_[2 * pairs_pending_] = order_bit_mask(setup_, axis, step.args[1]);
       pairs_[2 * pairs_pending_ + 1] = static_cast<cl_uint>(axis);
       if (++pairs_pending_ == kPairBatch) add_pairs();
+    } else if (step.op == kPhaseFoldStep) {
+      if (steps_pending_ > 0) add_steps();
+      fold(axis, step.args[1]);
     } else {
       throw std::invalid_argument("PhaseDeviceAccumulator::add: not a phase step");
     }
@@ -79,13 +86,14 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
     if (pairs_pending_ > 0) add_pairs();
     frames_.set_white_black(white_, black_);
     cl::set_args(finalize_, frames_.white(), frames_.black(), setup_.thresholds.black, setup_.thresholds.white, steps_,
-                 period_, setup_.projector_size.width, setup_.projector_size.height, setup_.entries_per_pixel, code_x_,
-                 code_y_, sums_, flags_, indices_, weights_, energy_, correspondence_, frames_.count());
+                 periods_[0].front(), by_order_ ? 1 : 0, setup_.projector_size.width, setup_.projector_size.height,
+                 setup_.entries_per_pixel, code_x_, code_y_, sums_, estimates_, flags_, indices_, weights_, energy_,
+                 correspondence_, frames_.count());
     frames_.run(finalize_, frames_.lanes_items());
     for (const auto* buffer : {&code_x_, &code_y_, &flags_, &indices_, &weights_, &energy_, &correspondence_}) {
       cl::sync_to_host(device_.queue(), *buffer);
     }
-    code_x_ = code_y_ = flags_ = indices_ = weights_ = energy_ = correspondence_ = sums_ = ::cl::Buffer();
+    code_x_ = code_y_ = flags_ = indices_ = weights_ = energy_ = correspondence_ = sums_ = estimates_ = ::cl::Buffer();
     frames_.release();
     return std::move(state_);
   }
@@ -100,6 +108,15 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
     frames_.run_batch(phase_steps_);
     steps_pending_ = 0;
     shifts_.fill(0.0f);
+  }
+
+  // The sums of period `level` of the axis folded into its estimate (phase_fold).
+  void fold(int axis, int level) {
+    const int n = axis == 0 ? setup_.projector_size.width : setup_.projector_size.height;
+    const bool coarsest = level + 1 == static_cast<int>(periods_[axis].size());
+    cl::set_args(fold_, static_cast<cl_int>(axis), periods_[axis].at(level), coarsest ? 1 : 0, 0.5f * (n - 1), steps_,
+                 setup_.thresholds.white, sums_, estimates_, flags_, frames_.count());
+    frames_.run(fold_, frames_.lanes_items());
   }
 
   // One launch over the pending order pairs; unused slots stay 0 (the kernel skips those pairs).
@@ -119,12 +136,13 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
   TransportSetup setup_;
   cl::DeviceContext& device_;
   int steps_;
-  int period_;
+  bool by_order_;
+  std::vector<int> periods_[2];
   DeviceFrames frames_;        // the batch of phase steps, or of order pairs (pair p: frames 2p and 2p + 1)
   CompressedTransport state_;  // the kernels' state, shared with them (cl::share) until finish() returns it
   cv::Mat white_, black_;
-  ::cl::Kernel order_pairs_, phase_steps_, finalize_;
-  ::cl::Buffer pairs_buffer_, shifts_buffer_, sums_, code_x_, code_y_, flags_, indices_, weights_, energy_,
+  ::cl::Kernel order_pairs_, phase_steps_, fold_, finalize_;
+  ::cl::Buffer pairs_buffer_, shifts_buffer_, sums_, estimates_, code_x_, code_y_, flags_, indices_, weights_, energy_,
       correspondence_;
   std::size_t steps_pending_ = 0;                   // phase steps in the batch not yet added
   int steps_axis_ = 0;                              // their axis

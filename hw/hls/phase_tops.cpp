@@ -1,6 +1,6 @@
-// HLS C++ tops of the phase-shifting decoding (Vitis 2023.1 and later): the bodies of phase_steps_single and
-// phase_finalize_single (kernels/transport/phase_decode.h) behind AXI4 masters for the buffers, AXI4-Lite for the
-// rest. The order codes go through gray_pairs_single (decode_tops.cpp).
+// HLS C++ tops of the phase-shifting decoding (Vitis 2023.1 and later): the bodies of phase_steps_single,
+// phase_fold_single and phase_finalize_single (kernels/transport/phase_decode.h) behind AXI4 masters for the buffers,
+// AXI4-Lite for the rest. The order codes go through gray_pairs_single (decode_tops.cpp).
 #define RF_TARGET_HLS  // kernels/common/target.h: emit the HLS loop directives
 
 #include "hls/transport_tops.h"
@@ -15,23 +15,33 @@ extern "C" void phase_steps_single(const float* frames, int axis, int step_count
   rf_phase_steps_pixels(n, axis, step_count, shifts, frames, sums);
 }
 
+extern "C" void phase_fold_single(int axis, int period, int coarsest, float middle, int steps, float white_threshold,
+                                  float* sums, float* estimates, unsigned char* flags, unsigned n) {
+#pragma HLS INTERFACE mode = m_axi port = sums offset = slave bundle = gmem0
+#pragma HLS INTERFACE mode = m_axi port = estimates offset = slave bundle = gmem1
+#pragma HLS INTERFACE mode = m_axi port = flags offset = slave bundle = gmem2
+#pragma HLS INTERFACE mode = s_axilite port = return
+  rf_phase_fold_pixels(n, axis, period, coarsest, middle, steps, white_threshold, sums, estimates, flags);
+}
+
 extern "C" void phase_finalize_single(const float* white, const float* black, float black_threshold,
-                                      float white_threshold, int steps, int period, int projector_width,
+                                      float white_threshold, int steps, int period, int by_order, int projector_width,
                                       int projector_height, int entries_per_pixel, unsigned* code_x, unsigned* code_y,
-                                      const float* sums, unsigned char* flags, int* indices, float* weights,
-                                      float* energy, float* correspondence, unsigned n) {
+                                      const float* sums, const float* estimates, unsigned char* flags, int* indices,
+                                      float* weights, float* energy, float* correspondence, unsigned n) {
 #pragma HLS INTERFACE mode = m_axi port = white offset = slave bundle = gmem0
 #pragma HLS INTERFACE mode = m_axi port = black offset = slave bundle = gmem1
 #pragma HLS INTERFACE mode = m_axi port = code_x offset = slave bundle = gmem2
 #pragma HLS INTERFACE mode = m_axi port = code_y offset = slave bundle = gmem3
 #pragma HLS INTERFACE mode = m_axi port = sums offset = slave bundle = gmem4
-#pragma HLS INTERFACE mode = m_axi port = flags offset = slave bundle = gmem5
-#pragma HLS INTERFACE mode = m_axi port = indices offset = slave bundle = gmem6
-#pragma HLS INTERFACE mode = m_axi port = weights offset = slave bundle = gmem7
-#pragma HLS INTERFACE mode = m_axi port = energy offset = slave bundle = gmem8
-#pragma HLS INTERFACE mode = m_axi port = correspondence offset = slave bundle = gmem9
+#pragma HLS INTERFACE mode = m_axi port = estimates offset = slave bundle = gmem5
+#pragma HLS INTERFACE mode = m_axi port = flags offset = slave bundle = gmem6
+#pragma HLS INTERFACE mode = m_axi port = indices offset = slave bundle = gmem7
+#pragma HLS INTERFACE mode = m_axi port = weights offset = slave bundle = gmem8
+#pragma HLS INTERFACE mode = m_axi port = energy offset = slave bundle = gmem9
+#pragma HLS INTERFACE mode = m_axi port = correspondence offset = slave bundle = gmem10
 #pragma HLS INTERFACE mode = s_axilite port = return
-  rf_phase_finalize_pixels(n, white, black, black_threshold, white_threshold, steps, period, projector_width,
-                           projector_height, entries_per_pixel, code_x, code_y, sums, flags, indices, weights, energy,
-                           correspondence);
+  rf_phase_finalize_pixels(n, white, black, black_threshold, white_threshold, steps, period, by_order, projector_width,
+                           projector_height, entries_per_pixel, code_x, code_y, sums, estimates, flags, indices,
+                           weights, energy, correspondence);
 }

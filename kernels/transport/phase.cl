@@ -6,8 +6,10 @@
 //                        (FPGA boards).
 //   Both take `shifts`, RF_FRAME_BATCH (sin, cos) pairs of the steps' phase shifts, and add to `sums` (four planes
 //   of n floats: S and C of the columns, then of the rows).
-//   phase_finalize_*:    phase, modulation, unwrapping with the order codes, flags, T's entry and the sub-pixel
-//                        correspondence (NDRange: RF_LANES pixels per work-item).
+//   phase_fold_*:        after the steps of one of an axis's longer periods: its phase unwrapped into the axis's
+//                        estimate, its sums cleared (NDRange: RF_LANES pixels per work-item).
+//   phase_finalize_*:    the finest period's phase and modulation, unwrapped near the order code's half period or
+//                        the estimate; flags, T's entry and the sub-pixel correspondence.
 #include "common/frame_batch.h"
 #include "common/target.h"
 #include "transport/phase_decode.h"
@@ -34,31 +36,50 @@ __kernel void phase_steps_single(__global const float* restrict frames, int axis
   rf_phase_steps_pixels(n, axis, step_count, shifts, frames, sums);
 }
 
-__kernel void phase_finalize_ndrange(__global const float* restrict white, __global const float* restrict black,
-                                     float black_threshold, float white_threshold, int steps, int period,
-                                     int projector_width, int projector_height, int entries_per_pixel,
-                                     __global uint* restrict code_x, __global uint* restrict code_y,
-                                     __global const float* restrict sums, __global uchar* restrict flags,
-                                     __global int* restrict indices, __global float* restrict weights,
-                                     __global float* restrict energy, __global float* restrict correspondence, uint n) {
+__kernel void phase_fold_ndrange(int axis, int period, int coarsest, float middle, int steps, float white_threshold,
+                                 __global float* restrict sums, __global float* restrict estimates,
+                                 __global uchar* restrict flags, uint n) {
   const uint c0 = get_global_id(0) * RF_LANES;
   const uint end = min(c0 + RF_LANES, n);
   for (uint c = c0; c < end; ++c) {
-    rf_phase_finalize_pixel(c, n, white[c], black[c], black_threshold, white_threshold, steps, period, projector_width,
-                            projector_height, entries_per_pixel, code_x, code_y, sums, flags, indices, weights, energy,
-                            correspondence);
+    rf_phase_fold_pixel(c, n, axis, period, coarsest, middle, steps, white_threshold, sums, estimates, flags);
+  }
+}
+
+RF_SINGLE_TASK
+__kernel void phase_fold_single(int axis, int period, int coarsest, float middle, int steps, float white_threshold,
+                                __global float* restrict sums, __global float* restrict estimates,
+                                __global uchar* restrict flags, uint n) {
+  rf_phase_fold_pixels(n, axis, period, coarsest, middle, steps, white_threshold, sums, estimates, flags);
+}
+
+__kernel void phase_finalize_ndrange(__global const float* restrict white, __global const float* restrict black,
+                                     float black_threshold, float white_threshold, int steps, int period, int by_order,
+                                     int projector_width, int projector_height, int entries_per_pixel,
+                                     __global uint* restrict code_x, __global uint* restrict code_y,
+                                     __global const float* restrict sums, __global const float* restrict estimates,
+                                     __global uchar* restrict flags, __global int* restrict indices,
+                                     __global float* restrict weights, __global float* restrict energy,
+                                     __global float* restrict correspondence, uint n) {
+  const uint c0 = get_global_id(0) * RF_LANES;
+  const uint end = min(c0 + RF_LANES, n);
+  for (uint c = c0; c < end; ++c) {
+    rf_phase_finalize_pixel(c, n, white[c], black[c], black_threshold, white_threshold, steps, period, by_order,
+                            projector_width, projector_height, entries_per_pixel, code_x, code_y, sums, estimates,
+                            flags, indices, weights, energy, correspondence);
   }
 }
 
 RF_SINGLE_TASK
 __kernel void phase_finalize_single(__global const float* restrict white, __global const float* restrict black,
-                                    float black_threshold, float white_threshold, int steps, int period,
+                                    float black_threshold, float white_threshold, int steps, int period, int by_order,
                                     int projector_width, int projector_height, int entries_per_pixel,
                                     __global uint* restrict code_x, __global uint* restrict code_y,
-                                    __global const float* restrict sums, __global uchar* restrict flags,
-                                    __global int* restrict indices, __global float* restrict weights,
-                                    __global float* restrict energy, __global float* restrict correspondence, uint n) {
-  rf_phase_finalize_pixels(n, white, black, black_threshold, white_threshold, steps, period, projector_width,
-                           projector_height, entries_per_pixel, code_x, code_y, sums, flags, indices, weights, energy,
-                           correspondence);
+                                    __global const float* restrict sums, __global const float* restrict estimates,
+                                    __global uchar* restrict flags, __global int* restrict indices,
+                                    __global float* restrict weights, __global float* restrict energy,
+                                    __global float* restrict correspondence, uint n) {
+  rf_phase_finalize_pixels(n, white, black, black_threshold, white_threshold, steps, period, by_order, projector_width,
+                           projector_height, entries_per_pixel, code_x, code_y, sums, estimates, flags, indices,
+                           weights, energy, correspondence);
 }

@@ -1,8 +1,10 @@
 // Phase-shifting decoding per camera pixel (the "phase" pattern family, docs/method.md "Phase shifting"), shared by
 // kernels/transport/phase.cl and the HLS C++ top (hw/hls/). State per pixel: the sums S = sum I_k sin(delta_k) and
 // C = sum I_k cos(delta_k) of each axis's phase steps, in four planes of n floats (sums[(2 axis) n + c] holds S,
-// sums[(2 axis + 1) n + c] holds C; axis 0: columns); each axis's order code (Gray code of the half-period index) is
-// decoded by the Gray pair kernels (transport/gray_decode.h) into code_x / code_y, with their low-contrast flag.
+// sums[(2 axis + 1) n + c] holds C; axis 0: columns) of the period being added, and either each axis's order code
+// (Gray code of the half-period index), decoded by the Gray pair kernels (transport/gray_decode.h) into code_x /
+// code_y with their low-contrast flag, or each axis's estimate unwrapped from the longer periods, coarsest first
+// (estimates[axis n + c], projector pixels).
 // Frames are linear camera responses in [0, 1]; thresholds in the same units.
 #ifndef RFRECON_KERNELS_TRANSPORT_PHASE_DECODE_H
 #define RFRECON_KERNELS_TRANSPORT_PHASE_DECODE_H
@@ -50,35 +52,63 @@ RF_INLINE void rf_load_phase_shifts(RF_GLOBAL const float* shifts, float* local_
   for (int p = 0; p < 2 * RF_FRAME_BATCH; ++p) local_shifts[p] = shifts[p];
 }
 
-// The unwrapped projector coordinate (pixel centres at integers) from the wrapped phase theta of an axis and its
-// half-period index `order`, period `period`: as transport::unwrap_phase (host/transport/phase_decoding.h), in float.
-RF_INLINE float rf_unwrap_phase(float theta, unsigned order, int period) {
+// The projector coordinate (pixel centres at integers) of wrapped phase theta and period `period` nearest `estimate`:
+// as transport::unwrap_near (host/transport/phase_decoding.h), in float.
+RF_INLINE float rf_unwrap_near(float theta, float estimate, int period) {
   float wrapped = theta / RF_TWO_PI * (float)period;
   if (wrapped < 0.0f) wrapped += (float)period;
-  const float middle = (float)order * 0.5f * (float)period + 0.25f * (float)period - 0.5f;
-  return RF_ROUND((middle - wrapped) / (float)period) * (float)period + wrapped;
+  return RF_ROUND((estimate - wrapped) / (float)period) * (float)period + wrapped;
+}
+
+// The estimate the order code gives: the middle of half period `order`.
+RF_INLINE float rf_order_middle(unsigned order, int period) {
+  return (float)order * 0.5f * (float)period + 0.25f * (float)period - 0.5f;
+}
+
+// The modulation 2 / N hypot(S, C) of N steps' sums: the sinusoid's amplitude in linear units.
+RF_INLINE float rf_phase_modulation(float sin_sum, float cos_sum, int steps) {
+  return 2.0f / (float)steps * RF_HYPOT(sin_sum, cos_sum);
+}
+
+// Pixel c's sums of one of the axis's longer periods (`period`) unwrapped near the estimate of the next coarser one
+// (`middle`, the axis's middle, for the coarsest) into the axis's estimate; the low-contrast flag where the
+// modulation is <= white_threshold; the sums cleared for the next finer period.
+RF_INLINE void rf_phase_fold_pixel(unsigned c, unsigned n, int axis, int period, int coarsest, float middle, int steps,
+                                   float white_threshold, RF_GLOBAL float* sums, RF_GLOBAL float* estimates,
+                                   RF_GLOBAL unsigned char* flags) {
+  const size_t s = (size_t)(2 * axis) * n + c;
+  const size_t k = (size_t)(2 * axis + 1) * n + c;
+  const size_t e = (size_t)axis * n + c;
+  const float sin_sum = sums[s], cos_sum = sums[k];
+  if (!(rf_phase_modulation(sin_sum, cos_sum, steps) > white_threshold)) {
+    flags[c] = (unsigned char)(flags[c] | RF_FLAG_LOW_CONTRAST);
+  }
+  estimates[e] = rf_unwrap_near(RF_ATAN2(sin_sum, cos_sum), coarsest ? middle : estimates[e], period);
+  sums[s] = 0.0f;
+  sums[k] = 0.0f;
 }
 
 // Pixel c's flags and, where valid, its sub-pixel correspondence, its projector pixel (code_x / code_y, 0 elsewhere)
-// and T's one entry at that pixel (white - black, row c * entries_per_pixel): shadow where white - black <=
-// black_threshold, else low contrast where an order pair was (the flag the Gray pair kernels set) or an axis's
-// modulation 2 / N hypot(S, C) is <= white_threshold, else out of range, else valid. Every other field is left as
-// the empty transport has it.
+// and T's one entry at that pixel (white - black, row c * entries_per_pixel): the finest period's sums unwrapped near
+// the order code's half period (by_order) or near the estimates; shadow where white - black <= black_threshold, else
+// low contrast where an order pair or a longer period was (the flag already set) or an axis's modulation is <=
+// white_threshold, else out of range, else valid. Every other field is left as the empty transport has it.
 RF_INLINE void rf_phase_finalize_pixel(unsigned c, unsigned n, float white, float black, float black_threshold,
-                                       float white_threshold, int steps, int period, int projector_width,
+                                       float white_threshold, int steps, int period, int by_order, int projector_width,
                                        int projector_height, int entries_per_pixel, RF_GLOBAL unsigned* code_x,
                                        RF_GLOBAL unsigned* code_y, RF_GLOBAL const float* sums,
-                                       RF_GLOBAL unsigned char* flags, RF_GLOBAL int* indices, RF_GLOBAL float* weights,
-                                       RF_GLOBAL float* energy, RF_GLOBAL float* correspondence) {
+                                       RF_GLOBAL const float* estimates, RF_GLOBAL unsigned char* flags,
+                                       RF_GLOBAL int* indices, RF_GLOBAL float* weights, RF_GLOBAL float* energy,
+                                       RF_GLOBAL float* correspondence) {
   const float lit = white - black;
-  const unsigned order_x = rf_gray_to_binary(code_x[c]);
-  const unsigned order_y = rf_gray_to_binary(code_y[c]);
+  const float estimate_x = by_order ? rf_order_middle(rf_gray_to_binary(code_x[c]), period) : estimates[c];
+  const float estimate_y = by_order ? rf_order_middle(rf_gray_to_binary(code_y[c]), period) : estimates[(size_t)n + c];
   const float sin_x = sums[c], cos_x = sums[(size_t)n + c];
   const float sin_y = sums[(size_t)2 * n + c], cos_y = sums[(size_t)3 * n + c];
-  const float modulation_x = 2.0f / (float)steps * RF_HYPOT(sin_x, cos_x);
-  const float modulation_y = 2.0f / (float)steps * RF_HYPOT(sin_y, cos_y);
-  const float u = rf_unwrap_phase(RF_ATAN2(sin_x, cos_x), order_x, period);
-  const float v = rf_unwrap_phase(RF_ATAN2(sin_y, cos_y), order_y, period);
+  const float modulation_x = rf_phase_modulation(sin_x, cos_x, steps);
+  const float modulation_y = rf_phase_modulation(sin_y, cos_y, steps);
+  const float u = rf_unwrap_near(RF_ATAN2(sin_x, cos_x), estimate_x, period);
+  const float v = rf_unwrap_near(RF_ATAN2(sin_y, cos_y), estimate_y, period);
   const float qx = RF_ROUND(u), qy = RF_ROUND(v);  // halves away from zero, as the reference's lround
   const int contrasted = (flags[c] & (unsigned char)RF_FLAG_LOW_CONTRAST) == 0 && modulation_x > white_threshold &&
                          modulation_y > white_threshold;
@@ -121,19 +151,30 @@ RF_INLINE void rf_phase_steps_pixels(unsigned n, int axis, int step_count, RF_GL
   }
 }
 
+RF_INLINE void rf_phase_fold_pixels(unsigned n, int axis, int period, int coarsest, float middle, int steps,
+                                    float white_threshold, RF_GLOBAL float* sums, RF_GLOBAL float* estimates,
+                                    RF_GLOBAL unsigned char* flags) {
+  RF_PIPELINE_II(1)
+  for (unsigned c = 0; c < n; ++c) {
+    RF_HLS_PIPELINE
+    rf_phase_fold_pixel(c, n, axis, period, coarsest, middle, steps, white_threshold, sums, estimates, flags);
+  }
+}
+
 RF_INLINE void rf_phase_finalize_pixels(unsigned n, RF_GLOBAL const float* white, RF_GLOBAL const float* black,
                                         float black_threshold, float white_threshold, int steps, int period,
-                                        int projector_width, int projector_height, int entries_per_pixel,
+                                        int by_order, int projector_width, int projector_height, int entries_per_pixel,
                                         RF_GLOBAL unsigned* code_x, RF_GLOBAL unsigned* code_y,
-                                        RF_GLOBAL const float* sums, RF_GLOBAL unsigned char* flags,
-                                        RF_GLOBAL int* indices, RF_GLOBAL float* weights, RF_GLOBAL float* energy,
+                                        RF_GLOBAL const float* sums, RF_GLOBAL const float* estimates,
+                                        RF_GLOBAL unsigned char* flags, RF_GLOBAL int* indices,
+                                        RF_GLOBAL float* weights, RF_GLOBAL float* energy,
                                         RF_GLOBAL float* correspondence) {
   RF_PIPELINE_II(1)
   for (unsigned c = 0; c < n; ++c) {
     RF_HLS_PIPELINE
-    rf_phase_finalize_pixel(c, n, white[c], black[c], black_threshold, white_threshold, steps, period, projector_width,
-                            projector_height, entries_per_pixel, code_x, code_y, sums, flags, indices, weights, energy,
-                            correspondence);
+    rf_phase_finalize_pixel(c, n, white[c], black[c], black_threshold, white_threshold, steps, period, by_order,
+                            projector_width, projector_height, entries_per_pixel, code_x, code_y, sums, estimates,
+                            flags, indices, weights, energy, correspondence);
   }
 }
 

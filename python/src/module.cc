@@ -156,14 +156,15 @@ PYBIND11_MODULE(_rfrecon, module) {
   module.def(
       "make_manifest",
       [](std::pair<int, int> projector_size, std::pair<int, int> camera_size, int bit_depth, int dot_spacing,
-         const std::string& family) {
+         const std::string& family, const std::map<std::string, int>& parameters) {
         const py::gil_scoped_release release;
-        return rfrecon::make_manifest(size_of(projector_size), size_of(camera_size), bit_depth, dot_spacing, family);
+        return rfrecon::make_manifest(size_of(projector_size), size_of(camera_size), bit_depth, dot_spacing, family,
+                                      parameters);
       },
       py::arg("projector_size"), py::arg("camera_size"), py::arg("bit_depth") = 8, py::arg("dot_spacing") = 8,
-      py::arg("family") = "graycode",
+      py::arg("family") = "graycode", py::arg("parameters") = std::map<std::string, int>{},
       "A pattern family's manifest (graycode: white, black, Gray code with inverses, dot grid) for (width, height) "
-      "sizes.");
+      "sizes, with the family's whole-number parameters (phase: phase_steps, phase_period, phase_ratio).");
   module.def("pattern_families", &rfrecon::pattern_family_names,
              "The pattern families' names, for make_manifest(family=...): graycode, then any registered in C++.");
   module.def(

@@ -101,18 +101,22 @@ TEST_P(FpgaMacrosOnPocl, GrayPairsOverAFullAndAPartialBatchEqualReference) {
   transport::testing::expect_same_transport(transport::testing::feed_all(*single, capture->sequence, linear), expected);
 }
 
-// The phase steps over a full and a partial batch of RF_FRAME_BATCH, the order pairs and the finalizing.
+// The phase steps over a full and a partial batch of RF_FRAME_BATCH, the order pairs and the finalizing; the folds of
+// longer periods (ratio 2).
 TEST_P(FpgaMacrosOnPocl, PhaseSingleEqualsReference) {
-  constexpr int kSteps = RF_FRAME_BATCH + 2, kPeriod = 6;
-  const auto capture = transport::testing::tiny_phase_capture(kSteps, kPeriod);
-  const auto linear = transport::testing::linearize(capture.frames);
-  const auto setup = transport::testing::phase_setup_for(linear, kSteps, kPeriod, 2);
-  const auto expected = transport::testing::feed_plan(*transport::make_phase_reference_accumulator(setup), "phase",
-                                                      capture.sequence, linear, linear);
-  auto single = transport::make_phase_device_accumulator(setup, devices_.front(), programs_,
-                                                         KernelEntry::kSingleWorkItem, options());
-  transport::testing::expect_same_phase_transport(
-      transport::testing::feed_plan(*single, "phase", capture.sequence, linear, linear), expected);
+  for (const transport::testing::PhaseParameters phase :
+       {transport::testing::PhaseParameters{RF_FRAME_BATCH + 2, 6}, transport::testing::PhaseParameters{4, 4, 2}}) {
+    SCOPED_TRACE("ratio " + std::to_string(phase.ratio));
+    const auto capture = transport::testing::tiny_phase_capture(phase);
+    const auto linear = transport::testing::linearize(capture.frames);
+    const auto setup = transport::testing::phase_setup_for(linear, phase, 2);
+    const auto expected = transport::testing::feed_plan(*transport::make_phase_reference_accumulator(setup), "phase",
+                                                        capture.sequence, linear, linear);
+    auto single = transport::make_phase_device_accumulator(setup, devices_.front(), programs_,
+                                                           KernelEntry::kSingleWorkItem, options());
+    transport::testing::expect_same_phase_transport(
+        transport::testing::feed_plan(*single, "phase", capture.sequence, linear, linear), expected);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -234,12 +234,15 @@ TEST(HlsCsim, GrayPairsTopOverAFullAndAPartialBatchMatchesReference) {
 class HlsPhaseAccumulator final : public TransportAccumulator {
  public:
   explicit HlsPhaseAccumulator(TransportSetup setup)
-      : steps_(phase_parameter(setup, capture::kPhaseSteps)), period_(phase_parameter(setup, capture::kPhasePeriod)) {
+      : steps_(phase_parameter(setup, capture::kPhaseSteps)),
+        by_order_(phase_parameter(setup, capture::kPhaseRatio) == 0),
+        periods_{axis_periods(setup, 0), axis_periods(setup, 1)} {
     setup.thresholds = resolve_thresholds(setup.thresholds, 8);
     t_ = make_empty_transport(setup);
     n_ = static_cast<unsigned>(t_.camera_pixels());
     batch_.resize(static_cast<std::size_t>(RF_FRAME_BATCH) * n_);
     sums_.assign(4 * static_cast<std::size_t>(n_), 0.0f);
+    estimates_.assign(2 * static_cast<std::size_t>(n_), 0.0f);
   }
 
   void add(const TransportStep& step, const std::vector<cv::Mat>& frames, const cv::Mat& white,
@@ -253,6 +256,13 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
       std::copy_n(frames.at(0).ptr<float>(), n_, batch_.begin() + static_cast<std::ptrdiff_t>(steps_pending_ * n_));
       std::tie(shifts_[2 * steps_pending_], shifts_[2 * steps_pending_ + 1]) = phase_shift(step.args[1], steps_);
       if (++steps_pending_ == RF_FRAME_BATCH) add_steps();
+    } else if (step.op == kPhaseFoldStep) {
+      if (steps_pending_ > 0) add_steps();
+      const int n = axis == 0 ? t_.setup.projector_size.width : t_.setup.projector_size.height;
+      const int level = step.args[1];
+      phase_fold_single(axis, periods_[axis].at(level), level + 1 == static_cast<int>(periods_[axis].size()) ? 1 : 0,
+                        0.5f * static_cast<float>(n - 1), steps_, t_.setup.thresholds.white, sums_.data(),
+                        estimates_.data(), t_.flags.data(), n_);
     } else {
       if (steps_pending_ > 0) add_steps();
       const auto frame = batch_.begin() + static_cast<std::ptrdiff_t>(2 * pairs_pending_ * n_);
@@ -268,10 +278,10 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
     if (steps_pending_ > 0) add_steps();
     if (pairs_pending_ > 0) add_pairs();
     phase_finalize_single(white_.ptr<float>(), black_.ptr<float>(), t_.setup.thresholds.black,
-                          t_.setup.thresholds.white, steps_, period_, t_.setup.projector_size.width,
-                          t_.setup.projector_size.height, t_.k(), t_.gray_x.data(), t_.gray_y.data(), sums_.data(),
-                          t_.flags.data(), t_.indices.data(), t_.weights.data(), t_.direct_energy.data(),
-                          t_.correspondence.data(), n_);
+                          t_.setup.thresholds.white, steps_, periods_[0].front(), by_order_ ? 1 : 0,
+                          t_.setup.projector_size.width, t_.setup.projector_size.height, t_.k(), t_.gray_x.data(),
+                          t_.gray_y.data(), sums_.data(), estimates_.data(), t_.flags.data(), t_.indices.data(),
+                          t_.weights.data(), t_.direct_energy.data(), t_.correspondence.data(), n_);
     return std::move(t_);
   }
 
@@ -290,12 +300,14 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
   }
 
   int steps_;
-  int period_;
+  bool by_order_;
+  std::vector<int> periods_[2];
   CompressedTransport t_;
   unsigned n_ = 0;
   cv::Mat white_, black_;
   std::vector<float> batch_;
   std::vector<float> sums_;
+  std::vector<float> estimates_;
   int axis_ = 0;
   unsigned steps_pending_ = 0;
   std::array<float, 2 * RF_FRAME_BATCH> shifts_ = {};
@@ -303,13 +315,16 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
   std::array<unsigned, 2 * RF_GRAY_PAIR_BATCH> pairs_ = {};
 };
 
-// 5 steps of period 4 (a partial batch per axis) and RF_FRAME_BATCH + 2 steps of period 6 (a full and a partial one).
+// 5 steps of period 4 (a partial batch per axis) and RF_FRAME_BATCH + 2 steps of period 6 (a full and a partial one)
+// unwrapped by the order code, and 4 steps of period 4 unwrapped by periods 8, 16, ... (ratio 2).
 TEST(HlsCsim, PhaseTopsMatchReference) {
-  for (const auto& [steps, period] : {std::pair{5, 4}, std::pair{RF_FRAME_BATCH + 2, 6}}) {
-    SCOPED_TRACE("steps " + std::to_string(steps) + " period " + std::to_string(period));
-    const auto capture = testing::tiny_phase_capture(steps, period);
+  for (const testing::PhaseParameters phase :
+       {testing::PhaseParameters{5, 4}, testing::PhaseParameters{RF_FRAME_BATCH + 2, 6},
+        testing::PhaseParameters{4, 4, 2}}) {
+    SCOPED_TRACE("steps " + std::to_string(phase.steps) + " ratio " + std::to_string(phase.ratio));
+    const auto capture = testing::tiny_phase_capture(phase);
     const auto linear = testing::linearize(capture.frames);
-    const auto setup = testing::phase_setup_for(linear, steps, period, RF_K);
+    const auto setup = testing::phase_setup_for(linear, phase, RF_K);
     const auto expected =
         testing::feed_plan(*make_phase_reference_accumulator(setup), "phase", capture.sequence, linear, linear);
     HlsPhaseAccumulator tops(setup);

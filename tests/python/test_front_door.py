@@ -153,6 +153,12 @@ def test_errors_name_what_is_wrong(session, capture, transport, plane, tmp_path)
     assert rfrecon.pattern_families() == ["graycode", "phase"]
     with pytest.raises(rfrecon.InputError, match="unknown pattern family 'stripes' \\(graycode, phase\\)"):
         rfrecon.make_manifest((64, 40), (80, 64), family="stripes")
+    # Ratio 4 on 64 x 40: columns' periods 16, 64, 128 and rows' 16, 56, three steps each, no order code.
+    phase = rfrecon.make_manifest((64, 40), (80, 64), dot_spacing=0, family="phase",
+                                  parameters={"phase_steps": 3, "phase_ratio": 4})
+    assert phase.family == "phase" and len(phase) == 2 + 3 * 3 + 2 * 3
+    with pytest.raises(rfrecon.InputError, match="phase_ratio = 1 is outside 2 to 64 \\(or 0: "):
+        rfrecon.make_manifest((64, 40), (80, 64), dot_spacing=0, family="phase", parameters={"phase_ratio": 1})
     rig = rfrecon.read_rig(plane / "truth" / "rig.yaml")
     with pytest.raises(rfrecon.UsageError, match="'passes' is 0: a whole number from 1 to 20") as error:
         session.reconstruct(transport, rig, passes=0)

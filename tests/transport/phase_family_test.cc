@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -39,6 +41,30 @@ TEST(PhaseUnwrapTest, RecoversEveryCoordinateFromPhaseAndAnOrderOffByOneAtItsEdg
   }
 }
 
+TEST(PhaseUnwrapTest, LongerPeriodsUnwrapTheFinestFromTheCoarsestEstimate) {
+  // Each period at most R times the one before; the coarsest over the axis plus the next one.
+  for (const auto& [n, period, ratio] :
+       {std::tuple{1024, 16, 8}, std::tuple{1280, 16, 4}, std::tuple{12, 4, 2}, std::tuple{800, 7, 64}}) {
+    const auto periods = capture::phase_periods(n, period, ratio);
+    ASSERT_GE(periods.size(), 2U);
+    EXPECT_EQ(periods.front(), period);
+    for (std::size_t k = 1; k < periods.size(); ++k) EXPECT_LE(periods[k], ratio * periods[k - 1]) << n;
+    EXPECT_GE(periods.back(), n + periods[periods.size() - 2]) << n;
+    // Every coordinate of the axis unwraps level by level to the truth while each level's phase is off by less than
+    // 1 / (2 R) of its period: here 0.8 of that.
+    const double error = 0.4 / ratio;  // periods
+    for (double u = -0.5; u < n - 0.5; u += 0.37) {
+      double estimate = 0.5 * (n - 1);
+      for (auto p = periods.rbegin(); p != periods.rend(); ++p) {
+        const double theta = std::remainder(2.0 * kPi * (u / *p + error), 2.0 * kPi);
+        estimate = unwrap_near(theta, estimate, *p);
+      }
+      EXPECT_NEAR(estimate, u + error * period, 1e-9) << "n " << n << " u " << u;
+    }
+  }
+  EXPECT_EQ(capture::phase_periods(640, 16, 0), std::vector<int>{16});
+}
+
 TEST(PhaseFamilyTest, PatternsCommandWritesTheSequenceWithItsParameters) {
   testing::TempDir dir("phase_patterns");
   const fs::path out = dir.path() / "patterns";
@@ -66,6 +92,37 @@ TEST(PhaseFamilyTest, PatternsCommandWritesTheSequenceWithItsParameters) {
   const auto range =
       testing::run_cli("patterns --family phase --phase-steps 2 --projector 64x40 -o " + (dir.path() / "r").string());
   EXPECT_EQ(range.exit_code, 2) << range.output;  // under the documented 3
+  const auto ratio_one =
+      testing::run_cli("patterns --family phase --phase-ratio 1 --projector 64x40 -o " + (dir.path() / "r").string());
+  EXPECT_EQ(ratio_one.exit_code, 2) << ratio_one.output;  // 0 or 2 to 64
+}
+
+TEST(PhaseFamilyTest, LongerPeriodsReplaceTheOrderCodeInTheSequenceAndManifest) {
+  testing::TempDir dir("phase_ratio");
+  const fs::path out = dir.path() / "patterns";
+  const auto written = testing::run_cli(
+      "-q patterns --family phase --phase-steps 3 --phase-period 8 --phase-ratio 4 "
+      "--projector 64x40 -o " +
+      out.string());
+  ASSERT_EQ(written.exit_code, 0) << written.output;
+  nlohmann::json manifest;
+  std::ifstream(out / "manifest.json") >> manifest;
+  EXPECT_EQ(manifest.at("parameters").at("phase_ratio"), 4);
+  // Columns: periods 8, 32, 96 (32 * 3 >= 64, then 64 + 32); rows: 8, 32, 72. Three steps each, no order frame.
+  ASSERT_EQ(manifest.at("frames").size(), 2U + 9U + 9U);
+  const auto& coarsest = manifest.at("frames").at(2);  // coarsest first
+  EXPECT_EQ(coarsest.at("pattern"), "phase_col");
+  EXPECT_EQ(coarsest.at("level"), 2);
+  const cv::Mat image = cv::imread((out / coarsest.at("file").get<std::string>()).string(), cv::IMREAD_GRAYSCALE);
+  for (int x = 0; x < image.cols; ++x) {
+    EXPECT_NEAR(image.at<unsigned char>(0, x), 127.5 + 127.5 * std::cos(2.0 * kPi * x / 96.0), 0.5) << x;
+  }
+  // A manifest with a level beyond the axis's periods is refused, naming the frame.
+  manifest["frames"][2]["level"] = 3;
+  std::ofstream(out / "manifest.json") << manifest.dump(2);
+  const auto refused = testing::run_cli("check " + out.string());
+  EXPECT_NE(refused.exit_code, 0) << refused.output;
+  EXPECT_NE(refused.output.find("level 3 outside 0 to 2"), std::string::npos) << refused.output;
 }
 
 struct Errors {
@@ -112,51 +169,56 @@ TEST(PhaseFamilyTest, SubPixelInFocusAndBeatsGrayCodeUnderDefocus) {
     scene["render"]["projector_defocus_px"] = defocus;
     const fs::path scene_file = dir.path() / ("scene_" + std::to_string(defocus) + ".json");
     std::ofstream(scene_file) << scene.dump(2);
-    fs::path transports[2];
-    for (const std::string family : {"graycode", "phase"}) {
-      const fs::path out = dir.path() / (family + std::to_string(defocus));
-      const auto simulated = testing::run_cli("-q simulate --scene " + scene_file.string() + " --family " + family +
+    fs::path transports[3];
+    const std::string families[3] = {"--family graycode", "--family phase", "--family phase --phase-ratio 4"};
+    for (int f = 0; f < 3; ++f) {
+      const fs::path out = dir.path() / (std::to_string(f) + "_" + std::to_string(defocus));
+      const auto simulated = testing::run_cli("-q simulate --scene " + scene_file.string() + " " + families[f] +
                                               " --dot-spacing 0 -o " + out.string());
       ASSERT_EQ(simulated.exit_code, 0) << simulated.output;
       const auto decoded =
           testing::run_cli("-q transport " + (out / "capture").string() + " -o " + (out / "T.h5").string());
       ASSERT_EQ(decoded.exit_code, 0) << decoded.output;
-      transports[family == "phase" ? 1 : 0] = out / "T.h5";
+      transports[f] = out / "T.h5";
     }
-    std::size_t outliers = 0;
-    const auto [gray, phase] = same_pixel_errors(transports[0], transports[1],
-                                                 dir.path() / ("phase" + std::to_string(defocus)) / "truth", outliers);
-    std::printf("defocus %.1f px: %zu pixels, column RMS Gray %.4f px, phase %.4f px, %zu over 2 px\n", defocus,
-                gray.pixels, gray.rms_px, phase.rms_px, outliers);
-    EXPECT_GT(gray.pixels, 160U * 128U / 3);
-    if (defocus == 0.0) EXPECT_LT(phase.rms_px, 0.1);
-    if (defocus > 0.0) EXPECT_LT(phase.rms_px, 0.5 * gray.rms_px);
+    const fs::path truth = dir.path() / ("0_" + std::to_string(defocus)) / "truth";
+    for (const int f : {1, 2}) {
+      std::size_t outliers = 0;
+      const auto [gray, phase] = same_pixel_errors(transports[0], transports[f], truth, outliers);
+      std::printf("defocus %.1f px: %zu pixels, column RMS Gray %.4f px, %s %.4f px, %zu over 2 px\n", defocus,
+                  gray.pixels, gray.rms_px, families[f].c_str(), phase.rms_px, outliers);
+      EXPECT_GT(gray.pixels, defocus == 0.0 ? 160U * 128U / 3 : 160U * 128U / 4);
+      if (defocus == 0.0) EXPECT_LT(phase.rms_px, 0.1) << families[f];
+      if (defocus > 0.0) EXPECT_LT(phase.rms_px, 0.5 * gray.rms_px) << families[f];
+    }
   }
 }
 
-// The table of docs/accuracy.md ("Phase shifting"): both families on the same renderings of the cube and the board,
-// in focus and defocused, over three noise seeds; correspondence (column) and triangulated depth RMS on the pixels
-// both decode. Run by hand: phase_family_test --gtest_also_run_disabled_tests --gtest_filter='*Table*'.
+// The table of docs/accuracy.md ("Phase shifting"): Gray code, phase shifting unwrapped by the order code and by longer
+// periods (ratio 4) on the same renderings of the cube and the board, in focus and defocused, over three noise seeds;
+// correspondence (column) and triangulated depth RMS on the pixels all three decode. Run by hand:
+// phase_family_test --gtest_also_run_disabled_tests --gtest_filter='*Table*'.
 TEST(PhaseFamilyTest, DISABLED_TableOfCubeAndBoardOverSeeds) {
   testing::TempDir dir("phase_table");
+  const std::string families[3] = {"--family graycode", "--family phase", "--family phase --phase-ratio 4"};
   std::printf(
-      "| scene | defocus (px) | seed | coverage Gray / phase | both | column RMS Gray / phase (px) | "
-      "depth RMS Gray / phase (mm) |\n");
+      "| scene | defocus (px) | seed | coverage Gray / order / periods (%%) | all three | column RMS Gray / order / "
+      "periods (px) | depth RMS Gray / order / periods (mm) |\n");
   for (const std::string name : {"cube-anisotropic", "board-plane"}) {
     const fs::path base = dir.path() / name;
     ASSERT_EQ(testing::run_cli("-q simulate --scene " + name + " --dot-spacing 0 -o " + base.string()).exit_code, 0);
-    for (const double defocus : {0.0, 2.5}) {
+    for (const double defocus : {0.0, 2.5, 4.0}) {
       nlohmann::json scene;
       std::ifstream(base / "scene.json") >> scene;
       scene["render"]["projector_defocus_px"] = defocus;
       const fs::path scene_file = dir.path() / (name + std::to_string(defocus) + ".json");
       std::ofstream(scene_file) << scene.dump(2);
       for (const int seed : {1, 2, 3}) {
-        fs::path out[2];
-        for (const int f : {0, 1}) {
-          out[f] = dir.path() / (name + std::to_string(defocus) + std::to_string(seed) + (f == 0 ? "gray" : "phase"));
-          const std::string family = f == 0 ? "graycode" : "phase";
-          ASSERT_EQ(testing::run_cli("-q simulate --scene " + scene_file.string() + " --family " + family +
+        fs::path out[3];
+        cv::Mat depth[3];
+        for (const int f : {0, 1, 2}) {
+          out[f] = dir.path() / (name + std::to_string(defocus) + std::to_string(seed) + "_" + std::to_string(f));
+          ASSERT_EQ(testing::run_cli("-q simulate --scene " + scene_file.string() + " " + families[f] +
                                      " --dot-spacing 0 --seed " + std::to_string(seed) + " -o " + out[f].string())
                         .exit_code,
                     0);
@@ -164,34 +226,53 @@ TEST(PhaseFamilyTest, DISABLED_TableOfCubeAndBoardOverSeeds) {
               testing::run_cli("-q transport " + (out[f] / "capture").string() + " -o " + (out[f] / "T.h5").string())
                   .exit_code,
               0);
-          ASSERT_EQ(testing::run_cli("-q reconstruct " + (out[f] / "T.h5").string() + " --calib " +
-                                     (out[f] / "truth" / "rig.yaml").string() + " --method triangulate -o " +
-                                     (out[f] / "rec").string())
-                        .exit_code,
-                    0);
+          const auto reconstructed = testing::run_cli("-q reconstruct " + (out[f] / "T.h5").string() + " --calib " +
+                                                      (out[f] / "truth" / "rig.yaml").string() +
+                                                      " --method triangulate -o " + (out[f] / "rec").string());
+          // Exit 6: nothing decoded to reconstruct (a family the defocus defeats), no depth.
+          ASSERT_TRUE(reconstructed.exit_code == 0 || reconstructed.exit_code == 6) << reconstructed.output;
+          depth[f] = reconstructed.exit_code == 0
+                         ? cv::imread((out[f] / "rec" / "depth.tiff").string(), cv::IMREAD_UNCHANGED)
+                         : cv::Mat(cv::Size(1, 1), CV_32F, cv::Scalar(NAN));
         }
-        std::size_t outliers = 0;
-        const auto [gray, phase] = same_pixel_errors(out[0] / "T.h5", out[1] / "T.h5", out[1] / "truth", outliers);
-        const cv::Mat truth = cv::imread((out[1] / "truth" / "depth.tiff").string(), cv::IMREAD_UNCHANGED);
-        const cv::Mat za = cv::imread((out[0] / "rec" / "depth.tiff").string(), cv::IMREAD_UNCHANGED);
-        const cv::Mat zb = cv::imread((out[1] / "rec" / "depth.tiff").string(), cv::IMREAD_UNCHANGED);
-        double sa = 0.0, sb = 0.0;
-        std::size_t both = 0, covered[2] = {0, 0}, object = 0;
+        // Column errors on the pixels all three decode: each family's against Gray code's, intersected.
+        const CompressedTransport t[3] = {read_transport(out[0] / "T.h5"), read_transport(out[1] / "T.h5"),
+                                          read_transport(out[2] / "T.h5")};
+        const cv::Mat seen = cv::imread((out[0] / "truth" / "correspondences.tiff").string(), cv::IMREAD_UNCHANGED);
+        const cv::Mat truth = cv::imread((out[0] / "truth" / "depth.tiff").string(), cv::IMREAD_UNCHANGED);
+        double column[3] = {0, 0, 0}, z[3] = {0, 0, 0};
+        std::size_t columns = 0, both = 0, covered[3] = {0, 0, 0}, object = 0;
         for (std::size_t c = 0; c < truth.total(); ++c) {
-          const float t = truth.at<float>(static_cast<int>(c)), a = za.at<float>(static_cast<int>(c)),
-                      b = zb.at<float>(static_cast<int>(c));
-          if (!(t > 0.0f)) continue;
-          ++object;
-          covered[0] += std::isnan(a) ? 0 : 1;
-          covered[1] += std::isnan(b) ? 0 : 1;
-          if (std::isnan(a) || std::isnan(b)) continue;
-          sa += (a - t) * (a - t);
-          sb += (b - t) * (b - t);
-          ++both;
+          const int i = static_cast<int>(c);
+          const float zt = truth.at<float>(i);
+          if (zt > 0.0f) {
+            ++object;
+            bool all = true;
+            for (int f = 0; f < 3; ++f) {
+              const bool has = depth[f].total() > 1 && !std::isnan(depth[f].at<float>(i));
+              covered[f] += has ? 1 : 0;
+              all = all && has;
+            }
+            if (all) {
+              ++both;
+              for (int f = 0; f < 3; ++f) z[f] += std::pow(depth[f].at<float>(i) - zt, 2);
+            }
+          }
+          const float u = seen.at<cv::Vec3f>(i)[0];
+          bool valid = !std::isnan(u);
+          for (int f = 0; f < 3; ++f) valid = valid && (t[f].flags[c] & kFlagValid) != 0;
+          if (!valid) continue;
+          double d[3];
+          for (int f = 0; f < 3; ++f) d[f] = t[f].correspondence[2 * c] - u;
+          if (std::abs(d[0]) > 2.0 || std::abs(d[1]) > 2.0 || std::abs(d[2]) > 2.0) continue;
+          ++columns;
+          for (int f = 0; f < 3; ++f) column[f] += d[f] * d[f];
         }
-        std::printf("| %s | %.1f | %d | %.1f / %.1f %% | %zu | %.4f / %.4f | %.4f / %.4f |\n", name.c_str(), defocus,
-                    seed, 100.0 * covered[0] / object, 100.0 * covered[1] / object, both, gray.rms_px, phase.rms_px,
-                    std::sqrt(sa / both), std::sqrt(sb / both));
+        const auto rms = [](double sum, std::size_t n) { return n == 0 ? NAN : std::sqrt(sum / n); };
+        std::printf("| %s | %.1f | %d | %.1f / %.1f / %.1f | %zu | %.4f / %.4f / %.4f | %.4f / %.4f / %.4f |\n",
+                    name.c_str(), defocus, seed, 100.0 * covered[0] / object, 100.0 * covered[1] / object,
+                    100.0 * covered[2] / object, both, rms(column[0], columns), rms(column[1], columns),
+                    rms(column[2], columns), rms(z[0], both), rms(z[1], both), rms(z[2], both));
       }
     }
   }

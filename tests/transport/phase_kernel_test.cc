@@ -18,13 +18,10 @@ namespace {
 
 constexpr KernelEntry kEntries[] = {KernelEntry::kNdRange, KernelEntry::kSingleWorkItem};
 
-struct PhaseCase {
-  int steps;
-  int period;
-};
-
-// 5 steps of period 4 (one partial batch per axis); RF_FRAME_BATCH + 2 steps of period 6 (a full and a partial one).
-constexpr PhaseCase kCases[] = {{5, 4}, {RF_FRAME_BATCH + 2, 6}};
+// Unwrapped by the order code: 5 steps of period 4 (one partial batch per axis), RF_FRAME_BATCH + 2 steps of period 6
+// (a full and a partial one); by longer periods: ratio 2 (periods 4, 8, 16, 32 of the columns, 4, 8, 16, 28 of the
+// rows) and ratio 4 (4, 16, 32 and 4, 16, 28).
+constexpr testing::PhaseParameters kCases[] = {{5, 4}, {RF_FRAME_BATCH + 2, 6}, {4, 4, 2}, {5, 4, 4}};
 
 class PhaseKernelTest : public ::testing::Test {
  protected:
@@ -33,11 +30,12 @@ class PhaseKernelTest : public ::testing::Test {
 };
 
 TEST_F(PhaseKernelTest, StepsOrderPairsAndFinalizeMatchReference) {
-  for (const PhaseCase phase : kCases) {
-    SCOPED_TRACE("steps " + std::to_string(phase.steps) + " period " + std::to_string(phase.period));
-    const auto capture = testing::tiny_phase_capture(phase.steps, phase.period);
+  for (const auto phase : kCases) {
+    SCOPED_TRACE("steps " + std::to_string(phase.steps) + " period " + std::to_string(phase.period) + " ratio " +
+                 std::to_string(phase.ratio));
+    const auto capture = testing::tiny_phase_capture(phase);
     const auto linear = testing::linearize(capture.frames);
-    auto setup = testing::phase_setup_for(linear, phase.steps, phase.period, 3);
+    auto setup = testing::phase_setup_for(linear, phase, 3);
     const auto expected =
         testing::feed_plan(*make_phase_reference_accumulator(setup), "phase", capture.sequence, linear, linear);
 

@@ -30,21 +30,25 @@ TinyCapture tiny_capture_of(cv::Size projector_size, int dot_spacing) {
 
 TinyCapture tiny_capture(int dot_spacing) { return tiny_capture_of({16, 12}, dot_spacing); }
 
-TinyCapture tiny_phase_capture(int steps, int period) {
+std::map<std::string, int> phase_parameters(PhaseParameters phase) {
+  return {
+      {capture::kPhaseSteps, phase.steps}, {capture::kPhasePeriod, phase.period}, {capture::kPhaseRatio, phase.ratio}};
+}
+
+TinyCapture tiny_phase_capture(PhaseParameters phase) {
   SceneOptions options;
   options.camera_size = {24, 20};
   options.projector_size = {16, 12};
-  const capture::ProtocolOptions protocol{
-      options.projector_size, 0, "phase", {{capture::kPhaseSteps, steps}, {capture::kPhasePeriod, period}}};
+  const capture::ProtocolOptions protocol{options.projector_size, 0, "phase", phase_parameters(phase)};
   TinyCapture capture{make_plane_scene(options), capture::make_protocol(protocol), {}};
   capture.frames = render_frames(capture.scene, capture.sequence, protocol, 1.0, 7);
   return capture;
 }
 
-TransportSetup phase_setup_for(const std::vector<cv::Mat>& frames, int steps, int period, int k) {
+TransportSetup phase_setup_for(const std::vector<cv::Mat>& frames, PhaseParameters phase, int k) {
   TransportSetup setup = setup_for(frames, {16, 12}, 0, k);
   setup.family = "phase";
-  setup.parameters = {{capture::kPhaseSteps, steps}, {capture::kPhasePeriod, period}};
+  setup.parameters = phase_parameters(phase);
   return setup;
 }
 

@@ -27,10 +27,17 @@ TinyCapture tiny_capture(int dot_spacing);
 // projector would not be tiny).
 std::optional<TinyCapture> tiny_gray_capture_over_batches();
 
-// The tiny capture through the phase family's sequence on a 16 x 12 projector: `steps` steps of period `period`.
-TinyCapture tiny_phase_capture(int steps, int period);
+// The phase family's parameters of a capture.
+struct PhaseParameters {
+  int steps;
+  int period;
+  int ratio = 0;  // 0: unwrapped by the order code
+};
+
+// The tiny capture through the phase family's sequence on a 16 x 12 projector.
+TinyCapture tiny_phase_capture(PhaseParameters phase);
 // The setup of a phase capture of `frames`: the family and its parameters, K entries per pixel.
-TransportSetup phase_setup_for(const std::vector<cv::Mat>& frames, int steps, int period, int k);
+TransportSetup phase_setup_for(const std::vector<cv::Mat>& frames, PhaseParameters phase, int k);
 
 // The tiny capture's compressed T as the C++ reference accumulator makes it, K entries per pixel.
 CompressedTransport tiny_reference_transport(int dot_spacing, int k);
