@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "host/capture/dot_grid.h"
 #include "host/core/errors.h"
 #include "host/core/message_text.h"
 
@@ -48,30 +49,16 @@ void append_gray_pairs(std::vector<Pattern>& sequence, cv::Size projector_size) 
   append_gray(sequence, pattern_kind::kGrayRow, gray_bits(projector_size.height));
 }
 
-bool dot_spacing_allowed(int dot_spacing) {
-  return dot_spacing == 0 || (dot_spacing >= 2 && dot_spacing <= kMaxDotSpacing);
-}
-
 class GraycodeFamily final : public PatternFamily {
  public:
   std::string name() const override { return kDefaultFamily; }
   std::string help() const override { return "Gray code of columns and rows with inverses, then an s x s dot grid"; }
 
   std::vector<Pattern> sequence(const ProtocolOptions& options) const override {
-    if (!dot_spacing_allowed(options.dot_spacing)) {
-      throw InputError("dot spacing must be 0 (no dot grid) or 2 to " + std::to_string(kMaxDotSpacing) + ", got " +
-                       std::to_string(options.dot_spacing));
-    }
+    check_dot_spacing(options.dot_spacing);
     std::vector<Pattern> sequence{plain(pattern_kind::kWhite), plain(pattern_kind::kBlack)};
     append_gray_pairs(sequence, options.projector_size);
-    for (int oy = 0; oy < options.dot_spacing; ++oy) {
-      for (int ox = 0; ox < options.dot_spacing; ++ox) {
-        Pattern dot = plain(pattern_kind::kDot);
-        dot.dot_offset_x = ox;
-        dot.dot_offset_y = oy;
-        sequence.push_back(dot);
-      }
-    }
+    append_dot_grid(sequence, options.dot_spacing);
     return sequence;
   }
 
@@ -90,10 +77,7 @@ class GraycodeFamily final : public PatternFamily {
         }
       }
     } else if (pattern.kind == pattern_kind::kDot) {
-      for (int y = pattern.dot_offset_y; y < size.height; y += options.dot_spacing) {
-        for (int x = pattern.dot_offset_x; x < size.width; x += options.dot_spacing)
-          image.at<unsigned char>(y, x) = 255;
-      }
+      render_dot(pattern, options.dot_spacing, image);
     }
     return image;
   }
@@ -103,7 +87,7 @@ class GraycodeFamily final : public PatternFamily {
     if (is_gray(pattern)) {
       std::snprintf(stem, sizeof stem, "%s_b%02d%s", pattern.kind.c_str(), pattern.bit, pattern.inverse ? "_inv" : "");
     } else if (pattern.kind == pattern_kind::kDot) {
-      std::snprintf(stem, sizeof stem, "dot_%02d_%02d", pattern.dot_offset_x, pattern.dot_offset_y);
+      return dot_file_stem(pattern);
     } else {
       return pattern.kind;
     }
@@ -115,7 +99,7 @@ class GraycodeFamily final : public PatternFamily {
       entry["bit"] = pattern.bit;
       entry["inverse"] = pattern.inverse;
     } else if (pattern.kind == pattern_kind::kDot) {
-      entry["dot_offset"] = nlohmann::json::array({pattern.dot_offset_x, pattern.dot_offset_y});
+      write_dot_entry(pattern, entry);
     }
   }
 
@@ -124,10 +108,7 @@ class GraycodeFamily final : public PatternFamily {
       pattern.bit = entry_int(entry, "bit", where);
       pattern.inverse = entry_bool(entry, "inverse", where);
     } else if (pattern.kind == pattern_kind::kDot) {
-      const auto offset = entry_ints(entry, "dot_offset", where);
-      if (offset.size() != 2) throw InputError(where + ": dot_offset must be [x, y]");
-      pattern.dot_offset_x = offset[0];
-      pattern.dot_offset_y = offset[1];
+      read_dot_entry(entry, where, pattern);
     } else if (pattern.kind != pattern_kind::kWhite && pattern.kind != pattern_kind::kBlack) {
       throw InputError(where + ": pattern '" + excerpt(pattern.kind) +
                        "' is not one of the graycode family's (white, black, gray_col, gray_row, dot)");
@@ -136,10 +117,7 @@ class GraycodeFamily final : public PatternFamily {
 
   void validate(const CaptureManifest& manifest, const std::string& where) const override {
     const auto fail = [&](const std::string& what) { throw InputError(where + ": " + what); };
-    if (!dot_spacing_allowed(manifest.dot_spacing))
-      fail("dot_spacing must be 0 or 2 to " + std::to_string(kMaxDotSpacing));
     std::set<std::tuple<int, int, bool>> gray_seen;
-    std::set<std::pair<int, int>> dots_seen;
     const int column_bits = gray_bits(manifest.projector_size.width);
     const int row_bits = gray_bits(manifest.projector_size.height);
     for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
@@ -155,13 +133,6 @@ class GraycodeFamily final : public PatternFamily {
                " (" + std::to_string(bits) + " bits)");
         }
         if (!gray_seen.insert({columns ? 0 : 1, pattern.bit, pattern.inverse}).second) fail(frame + "repeated frame");
-      } else if (pattern.kind == pattern_kind::kDot) {
-        if (manifest.dot_spacing == 0) fail(frame + "dot frame but dot_spacing is 0");
-        if (pattern.dot_offset_x < 0 || pattern.dot_offset_x >= manifest.dot_spacing || pattern.dot_offset_y < 0 ||
-            pattern.dot_offset_y >= manifest.dot_spacing) {
-          fail(frame + "dot_offset outside [0, dot_spacing)");
-        }
-        if (!dots_seen.insert({pattern.dot_offset_x, pattern.dot_offset_y}).second) fail(frame + "repeated frame");
       }
     }
     if (gray_seen.size() != 2 * static_cast<std::size_t>(column_bits + row_bits)) {
@@ -170,11 +141,7 @@ class GraycodeFamily final : public PatternFamily {
            std::to_string(manifest.projector_size.width) + "x" + std::to_string(manifest.projector_size.height) +
            " projector");
     }
-    if (dots_seen.size() !=
-        static_cast<std::size_t>(manifest.dot_spacing) * static_cast<std::size_t>(manifest.dot_spacing)) {
-      fail("incomplete dot grid: " + std::to_string(dots_seen.size()) + " of " +
-           std::to_string(manifest.dot_spacing * manifest.dot_spacing) + " frames");
-    }
+    validate_dot_grid(manifest, where);
   }
 };
 

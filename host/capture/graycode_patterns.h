@@ -10,11 +10,8 @@
 
 namespace rfrecon::capture {
 
-inline constexpr int kMaxDotSpacing = 64;  // s x s = 4096 dot frames at most
-
 // The family: white, black, then for each column bit (MSB first) the pattern and its inverse, then the same for rows
-// (OpenCV GrayCodePattern order), then dot frames with offset (ox, oy), ox fastest. Its option is dot_spacing: 0 (no
-// dot grid) or 2 to kMaxDotSpacing.
+// (OpenCV GrayCodePattern order), then the dot grid (host/capture/dot_grid.h) of the options' dot_spacing.
 std::shared_ptr<const PatternFamily> graycode_family();
 
 // Number of Gray code bits for a projector axis of n pixels: ceil(log2(n)), as OpenCV's GrayCodePattern.

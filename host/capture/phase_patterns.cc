@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "host/capture/dot_grid.h"
 #include "host/capture/graycode_patterns.h"
 #include "host/core/errors.h"
 #include "host/core/message_text.h"
@@ -46,7 +47,9 @@ class PhaseFamily final : public PatternFamily {
  public:
   std::string name() const override { return "phase"; }
   std::string help() const override {
-    return "N-step phase shifting of columns and rows, unwrapped by a Gray code of half periods or by longer periods";
+    return "N-step phase shifting of columns and rows, unwrapped by a Gray code of half periods or by longer periods, "
+           "then "
+           "an s x s dot grid";
   }
   std::vector<FamilyParameter> parameters() const override {
     return {{kPhaseSteps, 4, 3, 64, "phase: steps N of each axis's sinusoid"},
@@ -57,7 +60,7 @@ class PhaseFamily final : public PatternFamily {
   }
 
   std::vector<Pattern> sequence(const ProtocolOptions& options) const override {
-    if (options.dot_spacing != 0) throw InputError("the phase family takes no dot grid (dot spacing 0)");
+    check_dot_spacing(options.dot_spacing);
     const int steps = family_parameter(*this, options, kPhaseSteps);
     const int period = family_parameter(*this, options, kPhasePeriod);
     const int ratio = family_parameter(*this, options, kPhaseRatio);
@@ -85,12 +88,14 @@ class PhaseFamily final : public PatternFamily {
         }
       }
     }
+    append_dot_grid(sequence, options.dot_spacing);
     return sequence;
   }
 
   cv::Mat render(const Pattern& pattern, const ProtocolOptions& options) const override {
     const cv::Size size = options.projector_size;
     cv::Mat image(size, CV_8UC1, cv::Scalar(pattern.kind == pattern_kind::kWhite ? 255 : 0));
+    if (pattern.kind == pattern_kind::kDot) render_dot(pattern, options.dot_spacing, image);
     if (!is_phase(pattern) && !is_order(pattern)) return image;
     const int steps = family_parameter(*this, options, kPhaseSteps);
     const int period = family_parameter(*this, options, kPhasePeriod);
@@ -121,6 +126,8 @@ class PhaseFamily final : public PatternFamily {
       std::snprintf(stem, sizeof stem, "%s_s%02d", pattern.kind.c_str(), pattern.bit);
     } else if (is_order(pattern)) {
       std::snprintf(stem, sizeof stem, "%s_b%02d%s", pattern.kind.c_str(), pattern.bit, pattern.inverse ? "_inv" : "");
+    } else if (pattern.kind == pattern_kind::kDot) {
+      return dot_file_stem(pattern);
     } else {
       return pattern.kind;
     }
@@ -134,6 +141,7 @@ class PhaseFamily final : public PatternFamily {
       entry["bit"] = pattern.bit;
       entry["inverse"] = pattern.inverse;
     }
+    if (pattern.kind == pattern_kind::kDot) write_dot_entry(pattern, entry);
   }
 
   void read_entry(const nlohmann::json& entry, const std::string& where, Pattern& pattern) const override {
@@ -143,16 +151,18 @@ class PhaseFamily final : public PatternFamily {
     } else if (is_order(pattern)) {
       pattern.bit = entry_int(entry, "bit", where);
       pattern.inverse = entry_bool(entry, "inverse", where);
+    } else if (pattern.kind == pattern_kind::kDot) {
+      read_dot_entry(entry, where, pattern);
     } else if (pattern.kind != pattern_kind::kWhite && pattern.kind != pattern_kind::kBlack) {
       throw InputError(where + ": pattern '" + excerpt(pattern.kind) +
                        "' is not one of the phase family's (white, black, phase_col, phase_row, order_col, "
-                       "order_row)");
+                       "order_row, dot)");
     }
   }
 
   void validate(const CaptureManifest& manifest, const std::string& where) const override {
     const auto fail = [&](const std::string& what) { throw InputError(where + ": " + what); };
-    if (manifest.dot_spacing != 0) fail("the phase family takes no dot grid (dot_spacing 0)");
+    validate_dot_grid(manifest, where);
     const ProtocolOptions options = protocol_options(manifest);
     const int steps = family_parameter(*this, options, kPhaseSteps);
     const int period = family_parameter(*this, options, kPhasePeriod);
@@ -177,7 +187,8 @@ class PhaseFamily final : public PatternFamily {
         fail(frame + "repeated frame");
       }
     }
-    const std::size_t expected = sequence(options).size() - 2;
+    const std::size_t expected =
+        sequence(options).size() - 2 - static_cast<std::size_t>(manifest.dot_spacing * manifest.dot_spacing);
     if (seen.size() != expected) {
       fail("incomplete phase sequence: " + std::to_string(seen.size()) + " of " + std::to_string(expected) +
            " phase and order frames for " + std::to_string(steps) + " steps of period " + std::to_string(period));

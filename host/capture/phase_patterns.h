@@ -1,7 +1,8 @@
 // The built-in pattern family "phase": N-step phase shifting of columns and rows, unwrapped by a Gray code of the
 // half-period index with inverses, or by sinusoids of longer periods (temporal unwrapping). Sinusoids keep their phase
 // under projector defocus, where Gray code's finest stripes wash out; the finest stripes the order code needs are half
-// a period wide, and the longer periods need none (docs/method.md, "Phase shifting").
+// a period wide, and the longer periods need none (docs/method.md, "Phase shifting"). The dot grid
+// (host/capture/dot_grid.h) may follow, for T's full rows; the phase still gives the correspondences.
 #pragma once
 
 #include <memory>

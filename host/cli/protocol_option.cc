@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <set>
 
-#include "host/capture/graycode_patterns.h"
+#include "host/capture/dot_grid.h"
 #include "host/capture/pattern_family.h"
 #include "host/cli/number_checks.h"
 
@@ -21,8 +21,9 @@ void add_protocol_options(CLI::App& command, const std::shared_ptr<capture::Prot
       ->capture_default_str();
   auto* dot_spacing = command
                           .add_option("--dot-spacing", protocol->dot_spacing,
-                                      "graycode: dot grid spacing s (s x s frames); 0 = Gray code only [default: 8]")
-                          ->check(zero_or_range(2, capture::kMaxDotSpacing, "Gray code only"));
+                                      "Dot grid spacing s (s x s frames after the family's patterns); 0 = no dot grid "
+                                      "[default: 8 for graycode, 0 for the others]")
+                          ->check(zero_or_range(2, capture::kMaxDotSpacing, "no dot grid"));
   auto parameters = std::make_shared<std::map<std::string, int>>();
   add_family_parameter_options(command, parameters);
   command.parse_complete_callback([protocol, dot_spacing, parameters] {

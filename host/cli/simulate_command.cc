@@ -4,7 +4,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "host/capture/graycode_patterns.h"
+#include "host/capture/dot_grid.h"
 #include "host/capture/pattern_family.h"
 #include "host/cli/commands.h"
 #include "host/cli/number_checks.h"
@@ -79,8 +79,9 @@ void add_simulate_command(CLI::App& app) {
   add_family_parameter_options(*command, o->parameters);
   command
       ->add_option("--dot-spacing", o->dot_spacing,
-                   "Dot grid spacing s of the capture; 0 = Gray code, white and black only (default: the scene's)")
-      ->check(zero_or_range(2, capture::kMaxDotSpacing, "Gray code only"));
+                   "Dot grid spacing s of the capture (s x s frames after the family's patterns); 0 = no dot grid "
+                   "(default: the scene's)")
+      ->check(zero_or_range(2, capture::kMaxDotSpacing, "no dot grid"));
   command->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(0, 1024));
   command->callback([o] { run_simulate(*o); });
 }

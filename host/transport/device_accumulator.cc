@@ -116,13 +116,8 @@ class DeviceAccumulator final : public GraycodeAccumulator {
   void compress_batch() {
     const bool fresh = entry_ == KernelEntry::kNdRange && indices_() == nullptr;
     share_rows(fresh);
-    const ::cl::Buffer offsets = cl::upload(device_.context(), offsets_.data(), offsets_.size());
-    cl_uint next = frames_.set_arguments(dot_frames_, pending_);
-    if (entry_ == KernelEntry::kNdRange) cl::set_args_from(dot_frames_, next++, static_cast<cl_int>(fresh));
-    cl::set_args_from(dot_frames_, next, static_cast<cl_int>(pending_), offsets, setup_.dot_spacing,
-                      setup_.projector_size.width, setup_.projector_size.height, setup_.thresholds.noise,
-                      frames_.black(), flags_, gray_x_, gray_y_, indices_, weights_, energy_, frames_.count());
-    frames_.run_batch(dot_frames_);
+    frames_.run_dot_frames(dot_frames_, pending_, offsets_, fresh,
+                           {flags_, gray_x_, gray_y_, indices_, weights_, energy_});
     pending_ = 0;
     offsets_.fill(0);
   }
@@ -139,10 +134,10 @@ class DeviceAccumulator final : public GraycodeAccumulator {
   CompressedTransport state_;  // the kernels' state, shared with them (cl::share) until finish() returns it
   ::cl::Kernel gray_pairs_, gray_finalize_, dot_frames_, finalize_;
   ::cl::Buffer pairs_buffer_, gray_x_, gray_y_, flags_, indices_, weights_, energy_, correspondence_;
-  std::size_t gray_pending_ = 0;                    // Gray pairs in the batch not yet decoded
-  std::array<cl_uint, 2 * kGrayBatch> pairs_ = {};  // their (bit mask, axis)
-  std::size_t pending_ = 0;                         // dot frames in the batch not yet compressed
-  std::array<cl_int, 2 * kBatch> offsets_ = {};     // their (x, y) dot offsets
+  std::size_t gray_pending_ = 0;                               // Gray pairs in the batch not yet decoded
+  std::array<cl_uint, 2 * kGrayBatch> pairs_ = {};             // their (bit mask, axis)
+  std::size_t pending_ = 0;                                    // dot frames in the batch not yet compressed
+  std::array<cl_int, 2 * DeviceFrames::kSlots> offsets_ = {};  // their (x, y) dot offsets
 };
 
 }  // namespace

@@ -54,6 +54,18 @@ void DeviceFrames::run_batch(const ::cl::Kernel& kernel) {
   }
 }
 
+void DeviceFrames::run_dot_frames(::cl::Kernel& kernel, std::size_t frames,
+                                  const std::array<cl_int, 2 * kSlots>& offsets, bool fresh,
+                                  const DotRowBuffers& rows) {
+  const ::cl::Buffer offsets_buffer = cl::upload(device_.context(), offsets.data(), offsets.size());
+  cl_uint next = set_arguments(kernel, frames);
+  if (entry_ == KernelEntry::kNdRange) cl::set_args_from(kernel, next++, static_cast<cl_int>(fresh));
+  cl::set_args_from(kernel, next, static_cast<cl_int>(frames), offsets_buffer, setup_.dot_spacing,
+                    setup_.projector_size.width, setup_.projector_size.height, setup_.thresholds.noise, black_,
+                    rows.flags, rows.projector_x, rows.projector_y, rows.indices, rows.weights, rows.energy, count());
+  run_batch(kernel);
+}
+
 void DeviceFrames::set_white_black(const cv::Mat& white, const cv::Mat& black) {
   if (entry_ == KernelEntry::kSingleWorkItem) {
     upload(white_, white);

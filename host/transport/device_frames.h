@@ -17,6 +17,11 @@
 
 namespace rfrecon::transport {
 
+// The buffers of T's state that compress.cl's dot_frames reads (flags, the decoded projector pixel) and fills.
+struct DotRowBuffers {
+  ::cl::Buffer flags, projector_x, projector_y, indices, weights, energy;
+};
+
 class DeviceFrames {
  public:
   static constexpr std::size_t kSlots = RF_FRAME_BATCH;
@@ -33,6 +38,10 @@ class DeviceFrames {
   cl_uint set_arguments(::cl::Kernel& kernel, std::size_t count);
   // Runs kernel over the batch's pixels and waits; then releases the lent frames, each buffer before its frame.
   void run_batch(const ::cl::Kernel& kernel);
+  // Runs compress.cl's dot_frames (kernel) over the batch's `frames` dot frames, `offsets` their (x, y) offsets
+  // (unused slots 0), into T's rows, as run_batch; `fresh` (NDRange entries): the first batch, which writes every row.
+  void run_dot_frames(::cl::Kernel& kernel, std::size_t frames, const std::array<cl_int, 2 * kSlots>& offsets,
+                      bool fresh, const DotRowBuffers& rows);
 
   // White and black (linear CV_32F) for the finalizing kernels: white() and black() until release().
   void set_white_black(const cv::Mat& white, const cv::Mat& black);

@@ -10,6 +10,7 @@
 #include "host/cl/device_context.h"
 #include "host/cl/program_cache.h"
 #include "host/transport/accumulator.h"
+#include "host/transport/dot_rows.h"
 #include "host/transport/transport_types.h"
 
 namespace rfrecon::transport {
@@ -42,13 +43,6 @@ std::uint32_t gray_bit_mask(const TransportSetup& setup, GrayAxis axis, int bit)
 
 // The binary number of a Gray code word.
 std::uint32_t gray_to_binary(std::uint32_t gray);
-
-// A dot frame's offsets lie in [0, s), as host/capture/graycode_patterns.h makes them; std::invalid_argument otherwise.
-void check_dot_offsets(const TransportSetup& setup, int offset_x, int offset_y);
-
-// The kernels support the dot spacings of RF_DOT_SPACINGS (kernels/common/params.h, fixed in a board binary); any
-// other spacing but 0 (Gray code only) is a ProcessingError naming it and the supported ones.
-void check_kernel_dot_spacing(int dot_spacing);
 
 // Automatic white and noise thresholds (<= 0) are resolved for an 8-bit camera here; compute_transport
 // resolves them for the capture's bit depth before it makes an accumulator.

@@ -1,8 +1,8 @@
 // The phase family's accumulator steps and its two accumulators: the plain C++ reference (phase_decoding.cc) and the
-// OpenCL kernels of kernels/transport/phase.cl, with decode.cl's Gray pairs for the order codes
-// (phase_device_accumulator.cc). Both take the steps PhaseDecoding::plan makes: every phase step, then every order
-// pair, or for each axis its periods' steps from the coarsest, each but the finest followed by its fold; the frames of
-// the setup's frame depth, white and black linear CV_32F.
+// OpenCL kernels of kernels/transport/phase.cl, with decode.cl's Gray pairs for the order codes and compress.cl's dot
+// frames (phase_device_accumulator.cc). Both take the steps PhaseDecoding::plan makes: every phase step, then every
+// order pair, or for each axis its periods' steps from the coarsest, each but the finest followed by its fold; then the
+// dot frames; the frames of the setup's frame depth, white and black linear CV_32F.
 #pragma once
 
 #include <cstdint>
@@ -20,8 +20,10 @@ namespace rfrecon::transport {
 
 // TransportStep::op of the phase family: an order pair (frames pattern and inverse; args axis, bit from the most
 // significant), a phase step (frame; args axis, step index) and, after the steps of every period but the finest, the
-// fold of their sums into the axis's unwrapped estimate (no frame; args axis, level). Axis 0: columns.
-enum PhaseStep : int { kOrderPairStep, kPhaseShiftStep, kPhaseFoldStep };
+// fold of their sums into the axis's unwrapped estimate (no frame; args axis, level), and after all of those a dot
+// frame (args its offsets), which goes into T's rows at the projector pixel the phases found
+// (host/transport/dot_rows.h) while the correspondence stays the phases'. Axis 0: columns.
+enum PhaseStep : int { kOrderPairStep, kPhaseShiftStep, kPhaseFoldStep, kPhaseDotStep };
 
 // The periods of an axis (capture::phase_periods for the setup's projector and parameters), finest first.
 std::vector<int> axis_periods(const TransportSetup& setup, int axis);
@@ -38,12 +40,14 @@ std::uint32_t order_bit_mask(const TransportSetup& setup, int axis, int bit);
 // Automatic thresholds (<= 0) are resolved for an 8-bit camera, as make_reference_accumulator does.
 std::unique_ptr<TransportAccumulator> make_phase_reference_accumulator(TransportSetup setup);
 
-// decode.cl (the order pairs) and phase.cl, with the NDRange entries' sample type and `extra` options.
+// decode.cl (the order pairs) and phase.cl, with the NDRange entries' sample type and `extra` options; then, for a
+// capture with the dot grid, compress.cl.
 std::vector<cl::ProgramRequest> phase_programs(const TransportSetup& setup, KernelEntry entry,
                                                const std::string& extra = {});
 
 // The kernels' state (the order codes, the phase sums, the unwrapped estimates, the flags, T) stays on the device until
-// finish(). Phase steps go RF_FRAME_BATCH of one axis per launch, order pairs RF_GRAY_PAIR_BATCH. `build_options` as
+// finish(). Phase steps and dot frames go RF_FRAME_BATCH per launch (steps of one axis), order pairs
+// RF_GRAY_PAIR_BATCH; dot frames through compress.cl. `build_options` as
 // make_device_accumulator's; `storage`: an earlier transport whose memory it may reuse.
 std::unique_ptr<TransportAccumulator> make_phase_device_accumulator(TransportSetup setup, cl::DeviceContext& device,
                                                                     cl::ProgramCache& programs, KernelEntry entry,

@@ -12,6 +12,7 @@
 
 #include "host/capture/pattern_family.h"
 #include "host/capture/phase_patterns.h"
+#include "host/transport/dot_rows.h"
 #include "host/transport/graycode_accumulator.h"
 #include "host/transport/phase_accumulators.h"
 
@@ -26,7 +27,8 @@ bool on_columns(const capture::Pattern& pattern) {
 }
 
 // Per camera pixel and axis: the order code's bits or the estimate unwrapped from the longer periods, whether every
-// order bit and period was contrasted, and the phase sums of the period being added.
+// longer period was contrasted (an order bit's contrast is not asked: docs/method.md), and the phase sums of the
+// period being added.
 class PhaseAccumulator final : public TransportAccumulator {
  public:
   explicit PhaseAccumulator(const TransportSetup& setup)
@@ -55,7 +57,6 @@ class PhaseAccumulator final : public TransportAccumulator {
       for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
         const float p = pattern.ptr<float>()[c], q = inverse.ptr<float>()[c];
         if (p > q) order_[axis][c] |= mask;
-        if (std::fabs(p - q) <= t_.setup.thresholds.white) low_contrast_[axis][c] = 1;
       }
     } else if (step.op == kPhaseShiftStep) {
       const cv::Mat frame = linear(frames.at(0));
@@ -66,12 +67,31 @@ class PhaseAccumulator final : public TransportAccumulator {
       }
     } else if (step.op == kPhaseFoldStep) {
       fold(axis, step.args[1]);
+    } else if (step.op == kPhaseDotStep) {
+      if (!resolved_) resolve();
+      const cv::Mat frame = linear(frames.at(0));
+      add_dot_frame_to_rows(t_, step.args[0], step.args[1], frame.ptr<float>(), black_.ptr<float>());
     } else {
       throw std::invalid_argument("PhaseAccumulator::add: not a phase step");
     }
   }
 
   CompressedTransport finish() override {
+    if (!resolved_) resolve();
+    if (t_.setup.dot_spacing > 0) finish_rows(t_, false);
+    return std::move(t_);
+  }
+
+ private:
+  struct Phase {
+    double theta;       // wrapped phase, rad
+    double modulation;  // the sinusoid's amplitude B, linear units
+  };
+
+  // Every pixel's flags, projector pixel and correspondence from the phases; without the dot grid, T's single entry
+  // of that projector pixel, white - black.
+  void resolve() {
+    resolved_ = true;
     const cv::Size projector = t_.setup.projector_size;
     for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
       const float lit = white_.ptr<float>()[c] - black_.ptr<float>()[c];
@@ -89,30 +109,27 @@ class PhaseAccumulator final : public TransportAccumulator {
                             : unwrap_near(phase.theta, estimate_[axis][c], period);
       }
       const long qx = std::lround(u[0]), qy = std::lround(u[1]);
+      if (qx < 0 || qx >= projector.width || qy < 0 || qy >= projector.height) {
+        t_.flags[c] = kFlagOutOfRange;
+        continue;
+      }
+      // A low-contrast pixel keeps its projector pixel: the dot grid's rows are filled there.
+      t_.gray_x[c] = static_cast<std::uint32_t>(qx);
+      t_.gray_y[c] = static_cast<std::uint32_t>(qy);
       if (!contrasted) {
         t_.flags[c] = kFlagLowContrast;
-      } else if (qx < 0 || qx >= projector.width || qy < 0 || qy >= projector.height) {
-        t_.flags[c] = kFlagOutOfRange;
       } else {
         t_.flags[c] = kFlagValid;
-        t_.gray_x[c] = static_cast<std::uint32_t>(qx);
-        t_.gray_y[c] = static_cast<std::uint32_t>(qy);
         t_.correspondence[2 * c] = static_cast<float>(u[0]);
         t_.correspondence[2 * c + 1] = static_cast<float>(u[1]);
+        if (t_.setup.dot_spacing > 0) continue;
         const std::size_t row = c * static_cast<std::size_t>(t_.k());
         t_.indices[row] = static_cast<std::int32_t>(qy * projector.width + qx);
         t_.weights[row] = lit;
         t_.direct_energy[c] = lit;
       }
     }
-    return std::move(t_);
   }
-
- private:
-  struct Phase {
-    double theta;       // wrapped phase, rad
-    double modulation;  // the sinusoid's amplitude B, linear units
-  };
 
   // S = (N/2) B sin(theta), C = (N/2) B cos(theta) of the axis's sums at pixel c.
   Phase phase_at(int axis, std::size_t c) const {
@@ -149,6 +166,7 @@ class PhaseAccumulator final : public TransportAccumulator {
   std::vector<std::uint8_t> low_contrast_[2];
   cv::Mat white_;
   cv::Mat black_;
+  bool resolved_ = false;
 };
 
 class PhaseDecoding final : public DecodingFamily {
@@ -156,10 +174,11 @@ class PhaseDecoding final : public DecodingFamily {
   std::string name() const override { return "phase"; }
 
   // Per axis: its periods' steps from the coarsest, in manifest order within a period, each period but the finest
-  // folded after its steps; then the order pairs.
+  // folded after its steps; then the order pairs; then the dot frames in manifest order.
   std::vector<TransportStep> plan(const capture::CaptureManifest& manifest) const override {
     std::map<std::tuple<int, int, bool>, std::size_t> orders;                               // (axis, bit, inverse)
     std::map<std::pair<int, int>, std::vector<TransportStep>, std::greater<>> phase_steps;  // (axis, level) inverted
+    std::vector<TransportStep> dots;
     for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
       const auto& pattern = manifest.frames[i].pattern;
       const int axis = on_columns(pattern) ? 0 : 1;
@@ -168,6 +187,8 @@ class PhaseDecoding final : public DecodingFamily {
       } else if (pattern.kind == capture::pattern_kind::kPhaseColumn ||
                  pattern.kind == capture::pattern_kind::kPhaseRow) {
         phase_steps[{1 - axis, pattern.level}].push_back({kPhaseShiftStep, {i}, {axis, pattern.bit}, "decode"});
+      } else if (pattern.kind == capture::pattern_kind::kDot) {
+        dots.push_back({kPhaseDotStep, {i}, {pattern.dot_offset_x, pattern.dot_offset_y}, "compress"});
       }
     }
     std::vector<TransportStep> steps;
@@ -179,6 +200,7 @@ class PhaseDecoding final : public DecodingFamily {
       const auto [axis, bit, inverse] = key;
       if (!inverse) steps.push_back({kOrderPairStep, {frame, orders.at({axis, bit, true})}, {axis, bit}, "decode"});
     }
+    steps.insert(steps.end(), dots.begin(), dots.end());
     steps.emplace_back();
     return steps;
   }
@@ -237,7 +259,9 @@ std::unique_ptr<TransportAccumulator> make_phase_reference_accumulator(Transport
 std::vector<cl::ProgramRequest> phase_programs(const TransportSetup& setup, KernelEntry entry,
                                                const std::string& extra) {
   std::vector<cl::ProgramRequest> requests = transport_programs(setup, entry, extra);
+  const cl::ProgramRequest compress = requests[1];
   requests[1] = {"transport/phase.cl", requests[0].options};
+  if (setup.dot_spacing > 0) requests.push_back(compress);
   return requests;
 }
 

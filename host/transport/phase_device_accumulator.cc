@@ -1,5 +1,6 @@
 // The phase family's accumulator on one OpenCL device: kernels/transport/phase.cl for the phase steps and the
-// finalizing, decode.cl's Gray pairs for the order codes. The transport's own arrays are the kernels' state.
+// finalizing, decode.cl's Gray pairs for the order codes, compress.cl's dot frames for T's rows. The transport's own
+// arrays are the kernels' state.
 #include <algorithm>
 #include <array>
 #include <stdexcept>
@@ -8,8 +9,10 @@
 #include <vector>
 
 #include "host/capture/phase_patterns.h"
+#include "host/cl/error.h"
 #include "host/cl/kernel_launch.h"
 #include "host/transport/device_frames.h"
+#include "host/transport/dot_rows.h"
 #include "host/transport/phase_accumulators.h"
 #include "kernels/transport/gray_decode.h"
 
@@ -36,6 +39,11 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
     phase_steps_ = cl::make_kernel(phase, "phase_steps", entry);
     fold_ = cl::make_kernel(phase, "phase_fold", entry);
     finalize_ = cl::make_kernel(phase, "phase_finalize", entry);
+    if (setup.dot_spacing > 0) {
+      const ::cl::Program compress = programs.get(device, requests[2].kernel_path, requests[2].options);
+      dot_frames_ = cl::make_kernel(compress, "dot_frames", entry);
+      rows_finalize_ = cl::make_kernel(compress, "finalize", entry);
+    }
 
     const ::cl::Context& context = device.context();
     pairs_buffer_ = cl::make_buffer<cl_uint>(context, pairs_.size());
@@ -76,20 +84,29 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
     } else if (step.op == kPhaseFoldStep) {
       if (steps_pending_ > 0) add_steps();
       fold(axis, step.args[1]);
+    } else if (step.op == kPhaseDotStep) {
+      if (!resolved_) resolve();
+      check_dot_offsets(setup_, step.args[0], step.args[1]);
+      frames_.add(dots_pending_, frames.at(0));
+      offsets_[2 * dots_pending_] = step.args[0];
+      offsets_[2 * dots_pending_ + 1] = step.args[1];
+      if (++dots_pending_ == kBatch) add_dots();
     } else {
       throw std::invalid_argument("PhaseDeviceAccumulator::add: not a phase step");
     }
   }
 
   CompressedTransport finish() override {
-    if (steps_pending_ > 0) add_steps();
-    if (pairs_pending_ > 0) add_pairs();
-    frames_.set_white_black(white_, black_);
-    cl::set_args(finalize_, frames_.white(), frames_.black(), setup_.thresholds.black, setup_.thresholds.white, steps_,
-                 periods_[0].front(), by_order_ ? 1 : 0, setup_.projector_size.width, setup_.projector_size.height,
-                 setup_.entries_per_pixel, code_x_, code_y_, sums_, estimates_, flags_, indices_, weights_, energy_,
-                 correspondence_, frames_.count());
-    frames_.run(finalize_, frames_.lanes_items());
+    if (!resolved_) resolve();
+    if (dots_pending_ > 0) add_dots();
+    if (setup_.dot_spacing > 0) {
+      // compress.cl's finalize flags the pixels no dot reached; its centroids go to scratch, the phases' stay.
+      const ::cl::Buffer centroids = cl::make_buffer<float>(device_.context(), 2 * state_.camera_pixels());
+      cl::set_args(rows_finalize_, frames_.white(), frames_.black(), 1, setup_.projector_size.width,
+                   setup_.thresholds.noise, flags_, code_x_, code_y_, indices_, weights_, energy_, centroids,
+                   frames_.count());
+      frames_.run(rows_finalize_, frames_.count());
+    }
     for (const auto* buffer : {&code_x_, &code_y_, &flags_, &indices_, &weights_, &energy_, &correspondence_}) {
       cl::sync_to_host(device_.queue(), *buffer);
     }
@@ -99,6 +116,34 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
   }
 
  private:
+  // Flags, projector pixels and correspondences from the phases (phase_finalize, which also writes T's single entry);
+  // with the dot grid, T's rows and energies then start empty for the dot frames.
+  void resolve() {
+    resolved_ = true;
+    if (steps_pending_ > 0) add_steps();
+    if (pairs_pending_ > 0) add_pairs();
+    frames_.set_white_black(white_, black_);
+    cl::set_args(finalize_, frames_.white(), frames_.black(), setup_.thresholds.black, setup_.thresholds.white, steps_,
+                 periods_[0].front(), by_order_ ? 1 : 0, setup_.projector_size.width, setup_.projector_size.height,
+                 setup_.entries_per_pixel, code_x_, code_y_, sums_, estimates_, flags_, indices_, weights_, energy_,
+                 correspondence_, frames_.count());
+    frames_.run(finalize_, frames_.lanes_items());
+    if (setup_.dot_spacing == 0) return;
+    ::cl::CommandQueue& queue = device_.queue();
+    const std::size_t entries = state_.camera_pixels() * static_cast<std::size_t>(setup_.entries_per_pixel);
+    RF_CL_CHECK(queue.enqueueFillBuffer(indices_, cl_int{-1}, 0, entries * sizeof(cl_int)));
+    RF_CL_CHECK(queue.enqueueFillBuffer(weights_, 0.0f, 0, entries * sizeof(float)));
+    RF_CL_CHECK(queue.enqueueFillBuffer(energy_, 0.0f, 0, state_.camera_pixels() * sizeof(float)));
+  }
+
+  // One launch over the pending dot frames into T's rows (compress.cl's dot_frames; rows filled, never fresh).
+  void add_dots() {
+    frames_.run_dot_frames(dot_frames_, dots_pending_, offsets_, false,
+                           {flags_, code_x_, code_y_, indices_, weights_, energy_});
+    dots_pending_ = 0;
+    offsets_.fill(0);
+  }
+
   // One launch over the pending phase steps (all of axis steps_axis_); unused slots' shifts stay 0.
   void add_steps() {
     cl::write_buffer(device_.queue(), shifts_buffer_, shifts_.data(), shifts_.size(), false);
@@ -138,17 +183,20 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
   int steps_;
   bool by_order_;
   std::vector<int> periods_[2];
-  DeviceFrames frames_;        // the batch of phase steps, or of order pairs (pair p: frames 2p and 2p + 1)
+  DeviceFrames frames_;  // the batch of phase steps, of order pairs (pair p: frames 2p and 2p + 1) or of dot frames
   CompressedTransport state_;  // the kernels' state, shared with them (cl::share) until finish() returns it
   cv::Mat white_, black_;
-  ::cl::Kernel order_pairs_, phase_steps_, fold_, finalize_;
+  ::cl::Kernel order_pairs_, phase_steps_, fold_, finalize_, dot_frames_, rows_finalize_;
   ::cl::Buffer pairs_buffer_, shifts_buffer_, sums_, estimates_, code_x_, code_y_, flags_, indices_, weights_, energy_,
       correspondence_;
-  std::size_t steps_pending_ = 0;                   // phase steps in the batch not yet added
-  int steps_axis_ = 0;                              // their axis
-  std::array<float, 2 * kBatch> shifts_ = {};       // their (sin, cos) of the phase shift
-  std::size_t pairs_pending_ = 0;                   // order pairs in the batch not yet decoded
-  std::array<cl_uint, 2 * kPairBatch> pairs_ = {};  // their (bit mask, axis)
+  std::size_t steps_pending_ = 0;                              // phase steps in the batch not yet added
+  int steps_axis_ = 0;                                         // their axis
+  std::array<float, 2 * kBatch> shifts_ = {};                  // their (sin, cos) of the phase shift
+  std::size_t pairs_pending_ = 0;                              // order pairs in the batch not yet decoded
+  std::array<cl_uint, 2 * kPairBatch> pairs_ = {};             // their (bit mask, axis)
+  bool resolved_ = false;                                      // phase_finalize has run
+  std::size_t dots_pending_ = 0;                               // dot frames in the batch not yet compressed
+  std::array<cl_int, 2 * DeviceFrames::kSlots> offsets_ = {};  // their (x, y) dot offsets
 };
 
 }  // namespace
@@ -157,6 +205,7 @@ std::unique_ptr<TransportAccumulator> make_phase_device_accumulator(TransportSet
                                                                     cl::ProgramCache& programs, KernelEntry entry,
                                                                     const std::string& build_options,
                                                                     CompressedTransport storage) {
+  check_kernel_dot_spacing(setup.dot_spacing);
   setup.thresholds = resolve_thresholds(setup.thresholds, 8);
   return std::make_unique<PhaseDeviceAccumulator>(setup, device, programs, entry, build_options, std::move(storage));
 }

@@ -632,14 +632,16 @@ CompressedTransport read_transport(const fs::path& file) {
   CompressedTransport transport;
   transport.setup = setup;
   const std::string protocol = reader.string("protocol");
-  if (protocol != "gray" && protocol != "gray+dots") {
-    if (setup.dot_spacing != 0 || protocol.empty()) {
-      reader.fail("attribute 'protocol' is '" + excerpt(protocol) + "': a family's name needs dot_spacing 0");
-    }
-    transport.setup.family = protocol;  // another family's T
-  } else if (protocol != transport.protocol()) {
-    reader.fail("attribute 'protocol' is '" + excerpt(protocol) + "', dot_spacing " +
-                std::to_string(setup.dot_spacing) + " means '" + transport.protocol() + "'");
+  // "gray", "gray+dots", or another family's name, with "+dots" for its dot grid.
+  const std::string suffix = "+dots";
+  const bool dots =
+      protocol.size() > suffix.size() && protocol.compare(protocol.size() - suffix.size(), suffix.size(), suffix) == 0;
+  const std::string family = dots ? protocol.substr(0, protocol.size() - suffix.size()) : protocol;
+  if (family != "gray") transport.setup.family = family;
+  if (family.empty() || protocol != transport.protocol()) {
+    reader.fail("attribute 'protocol' is '" + excerpt(protocol) + "': with dot_spacing " +
+                std::to_string(setup.dot_spacing) + " it is " +
+                (setup.dot_spacing > 0 ? "'gray+dots' or a family's name and '+dots'" : "'gray' or a family's name"));
   }
   const Shapes shapes(setup);
   transport.indices = reader.dataset<std::int32_t>("indices", shapes.entries);

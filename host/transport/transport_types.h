@@ -120,10 +120,10 @@ struct CompressedTransport {
   std::size_t camera_pixels() const { return static_cast<std::size_t>(setup.camera_size.area()); }
   std::size_t projector_pixels() const { return static_cast<std::size_t>(setup.projector_size.area()); }
   int k() const { return setup.entries_per_pixel; }
-  // The graycode family's "gray+dots" or "gray" (Gray code only), or another family's name.
+  // The graycode family's "gray+dots" or "gray" (Gray code only), or another family's name ("+dots" with the grid).
   std::string protocol() const {
-    if (setup.family != capture::kDefaultFamily) return setup.family;
-    return setup.dot_spacing > 0 ? "gray+dots" : "gray";
+    const std::string family = setup.family == capture::kDefaultFamily ? "gray" : setup.family;
+    return setup.dot_spacing > 0 ? family + "+dots" : family;
   }
 };
 

@@ -3,7 +3,8 @@
 // C = sum I_k cos(delta_k) of each axis's phase steps, in four planes of n floats (sums[(2 axis) n + c] holds S,
 // sums[(2 axis + 1) n + c] holds C; axis 0: columns) of the period being added, and either each axis's order code
 // (Gray code of the half-period index), decoded by the Gray pair kernels (transport/gray_decode.h) into code_x /
-// code_y with their low-contrast flag, or each axis's estimate unwrapped from the longer periods, coarsest first
+// code_y (their low-contrast flag ignored: a pair undecided at its stripe edge leaves the half-period index off by one
+// at most, which the unwrapping absorbs), or each axis's estimate unwrapped from the longer periods, coarsest first
 // (estimates[axis n + c], projector pixels).
 // Frames are linear camera responses in [0, 1]; thresholds in the same units.
 #ifndef RFRECON_KERNELS_TRANSPORT_PHASE_DECODE_H
@@ -88,11 +89,13 @@ RF_INLINE void rf_phase_fold_pixel(unsigned c, unsigned n, int axis, int period,
   sums[k] = 0.0f;
 }
 
-// Pixel c's flags and, where valid, its sub-pixel correspondence, its projector pixel (code_x / code_y, 0 elsewhere)
-// and T's one entry at that pixel (white - black, row c * entries_per_pixel): the finest period's sums unwrapped near
-// the order code's half period (by_order) or near the estimates; shadow where white - black <= black_threshold, else
-// low contrast where an order pair or a longer period was (the flag already set) or an axis's modulation is <=
-// white_threshold, else out of range, else valid. Every other field is left as the empty transport has it.
+// Pixel c's flags and, where valid, its sub-pixel correspondence and T's one entry at its projector pixel (white -
+// black, row c * entries_per_pixel): the finest period's sums unwrapped near the order code's half period (by_order)
+// or near the estimates; shadow where white - black <= black_threshold, else out of range where the rounded position
+// lies outside the projector, else low contrast where a longer period was (the flag already set; not an order pair's)
+// or an axis's modulation is <= white_threshold, else valid. The projector pixel goes to code_x / code_y where valid
+// or low contrast (where the dot grid's rows are filled, as Gray code's undecided pixels are), 0 elsewhere. Every other
+// field is left as the empty transport has it.
 RF_INLINE void rf_phase_finalize_pixel(unsigned c, unsigned n, float white, float black, float black_threshold,
                                        float white_threshold, int steps, int period, int by_order, int projector_width,
                                        int projector_height, int entries_per_pixel, RF_GLOBAL unsigned* code_x,
@@ -110,21 +113,22 @@ RF_INLINE void rf_phase_finalize_pixel(unsigned c, unsigned n, float white, floa
   const float u = rf_unwrap_near(RF_ATAN2(sin_x, cos_x), estimate_x, period);
   const float v = rf_unwrap_near(RF_ATAN2(sin_y, cos_y), estimate_y, period);
   const float qx = RF_ROUND(u), qy = RF_ROUND(v);  // halves away from zero, as the reference's lround
-  const int contrasted = (flags[c] & (unsigned char)RF_FLAG_LOW_CONTRAST) == 0 && modulation_x > white_threshold &&
-                         modulation_y > white_threshold;
+  const int contrasted = (by_order || (flags[c] & (unsigned char)RF_FLAG_LOW_CONTRAST) == 0) &&
+                         modulation_x > white_threshold && modulation_y > white_threshold;
   const int in_range = qx >= 0.0f && qx < (float)projector_width && qy >= 0.0f && qy < (float)projector_height;
   unsigned char f = (unsigned char)RF_FLAG_VALID;
   if (!(lit > black_threshold)) {
     f = (unsigned char)RF_FLAG_SHADOW;
-  } else if (!contrasted) {
-    f = (unsigned char)RF_FLAG_LOW_CONTRAST;
   } else if (!in_range) {
     f = (unsigned char)RF_FLAG_OUT_OF_RANGE;
+  } else if (!contrasted) {
+    f = (unsigned char)RF_FLAG_LOW_CONTRAST;
   }
   flags[c] = f;
   const int valid = f == (unsigned char)RF_FLAG_VALID;
-  code_x[c] = valid ? (unsigned)qx : 0u;
-  code_y[c] = valid ? (unsigned)qy : 0u;
+  const int placed = valid || f == (unsigned char)RF_FLAG_LOW_CONTRAST;
+  code_x[c] = placed ? (unsigned)qx : 0u;
+  code_y[c] = placed ? (unsigned)qy : 0u;
   if (valid) {
     const size_t row = (size_t)c * (size_t)entries_per_pixel;
     indices[row] = (int)qy * projector_width + (int)qx;

@@ -157,6 +157,12 @@ def test_errors_name_what_is_wrong(session, capture, transport, plane, tmp_path)
     phase = rfrecon.make_manifest((64, 40), (80, 64), dot_spacing=0, family="phase",
                                   parameters={"phase_steps": 3, "phase_ratio": 4})
     assert phase.family == "phase" and len(phase) == 2 + 3 * 3 + 2 * 3
+    # The dot grid after the phases: 4 x 4 frames more, the last lighting every fourth pixel from (3, 3).
+    dotted = rfrecon.make_manifest((64, 40), (80, 64), dot_spacing=4, family="phase",
+                                   parameters={"phase_steps": 3, "phase_ratio": 4})
+    assert dotted.dot_spacing == 4 and len(dotted) == len(phase) + 16
+    last = rfrecon.pattern_image(dotted, len(dotted) - 1)
+    assert last[3::4, 3::4].min() == 255 and int(last.sum()) == 255 * 16 * 10
     with pytest.raises(rfrecon.InputError, match="phase_ratio = 1 is outside 2 to 64 \\(or 0: "):
         rfrecon.make_manifest((64, 40), (80, 64), dot_spacing=0, family="phase", parameters={"phase_ratio": 1})
     rig = rfrecon.read_rig(plane / "truth" / "rig.yaml")

@@ -1,7 +1,8 @@
 // The phase family: unwrapping recovers every projector coordinate from its wrapped phase and half-period order (off
 // by one at its edge included). On the synthetic rig (a plane, 4 steps of period 16) its sub-pixel correspondences
 // are within 0.1 projector pixel RMS of the truth in focus, and under a projector defocus of sigma 2.5 px, which washes
-// out Gray code's finest stripes, less than half Gray code's error on the same pixels.
+// out Gray code's finest stripes, less than half Gray code's error on the same pixels. With a dot grid after the
+// phases, the integration and the fusion run on them.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "host/capture/phase_patterns.h"
@@ -34,8 +36,12 @@ TEST(PhaseUnwrapTest, RecoversEveryCoordinateFromPhaseAndAnOrderOffByOneAtItsEdg
       EXPECT_NEAR(unwrap_phase(theta, order, period), u, 1e-9) << "P " << period << " u " << u;
       // A pixel within a tenth of a period of its half period's edge may read the neighbouring order.
       const double in_half = u + 0.5 - order * 0.5 * period;
-      if (in_half < 0.1 * period && order > 0) EXPECT_NEAR(unwrap_phase(theta, order - 1, period), u, 1e-9);
-      if (in_half > 0.4 * period) EXPECT_NEAR(unwrap_phase(theta, order + 1, period), u, 1e-9);
+      if (in_half < 0.1 * period && order > 0) {
+        EXPECT_NEAR(unwrap_phase(theta, order - 1, period), u, 1e-9);
+      }
+      if (in_half > 0.4 * period) {
+        EXPECT_NEAR(unwrap_phase(theta, order + 1, period), u, 1e-9);
+      }
       EXPECT_NEAR(unwrap_phase(theta + 0.2 * kPi, order, period), u + 0.1 * period, 1e-9);  // phase error carried
     }
   }
@@ -156,6 +162,16 @@ std::pair<Errors, Errors> same_pixel_errors(const fs::path& a, const fs::path& b
   return {ea, eb};
 }
 
+// A copy of base's scene.json with the projector defocused by a Gaussian of sigma `defocus` projector pixels.
+fs::path defocused_scene(const fs::path& base, const fs::path& dir, const std::string& name, double defocus) {
+  nlohmann::json scene;
+  std::ifstream(base / "scene.json") >> scene;
+  scene["render"]["projector_defocus_px"] = defocus;
+  const fs::path scene_file = dir / (name + std::to_string(defocus) + ".json");
+  std::ofstream(scene_file) << scene.dump(2);
+  return scene_file;
+}
+
 TEST(PhaseFamilyTest, SubPixelInFocusAndBeatsGrayCodeUnderDefocus) {
   testing::TempDir dir("phase_family");
   const fs::path base = dir.path() / "base";
@@ -164,11 +180,7 @@ TEST(PhaseFamilyTest, SubPixelInFocusAndBeatsGrayCodeUnderDefocus) {
       testing::run_cli("-q simulate --scene plane-lambert --dot-spacing 0" + size + " -o " + base.string()).exit_code,
       0);
   for (const double defocus : {0.0, 2.5}) {
-    nlohmann::json scene;
-    std::ifstream(base / "scene.json") >> scene;
-    scene["render"]["projector_defocus_px"] = defocus;
-    const fs::path scene_file = dir.path() / ("scene_" + std::to_string(defocus) + ".json");
-    std::ofstream(scene_file) << scene.dump(2);
+    const fs::path scene_file = defocused_scene(base, dir.path(), "scene_", defocus);
     fs::path transports[3];
     const std::string families[3] = {"--family graycode", "--family phase", "--family phase --phase-ratio 4"};
     for (int f = 0; f < 3; ++f) {
@@ -188,17 +200,80 @@ TEST(PhaseFamilyTest, SubPixelInFocusAndBeatsGrayCodeUnderDefocus) {
       std::printf("defocus %.1f px: %zu pixels, column RMS Gray %.4f px, %s %.4f px, %zu over 2 px\n", defocus,
                   gray.pixels, gray.rms_px, families[f].c_str(), phase.rms_px, outliers);
       EXPECT_GT(gray.pixels, defocus == 0.0 ? 160U * 128U / 3 : 160U * 128U / 4);
-      if (defocus == 0.0) EXPECT_LT(phase.rms_px, 0.1) << families[f];
-      if (defocus > 0.0) EXPECT_LT(phase.rms_px, 0.5 * gray.rms_px) << families[f];
+      if (defocus == 0.0) {
+        EXPECT_LT(phase.rms_px, 0.1) << families[f];
+      } else {
+        EXPECT_LT(phase.rms_px, 0.5 * gray.rms_px) << families[f];
+      }
     }
   }
+}
+
+// The object's coverage (%) and depth RMS (mm) of a reconstruction, on the pixels `others` reconstruct too (all of its
+// own for none).
+std::pair<double, double> evaluated(const fs::path& reconstruction, const fs::path& truth, const std::string& others) {
+  const auto run = testing::run_cli("-q evaluate " + reconstruction.string() + " --truth " + truth.string() +
+                                    " --force" + (others.empty() ? "" : " --same-pixels-as " + others));
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  nlohmann::json report;
+  std::ifstream(reconstruction / "evaluation.json") >> report;
+  const auto& object = report.at("object_pixels");
+  const auto& rms = object.at("depth_error_mm").at("rms");
+  return {object.at("coverage_percent").get<double>(), rms.is_null() ? NAN : rms.get<double>()};
+}
+
+// A dot grid after the phases gives T's full rows, so the integration and the fusion run on a phase capture, seeded
+// by the phases' correspondences: on the plane the fusion covers most of it and is several times as accurate as the
+// triangulation alone on the same pixels.
+TEST(PhaseFamilyTest, DotGridAfterThePhasesFeedsTheIntegrationAndFusion) {
+  testing::TempDir dir("phase_dots");
+  const fs::path out = dir.path() / "plane";
+  ASSERT_EQ(testing::run_cli("-q simulate --scene plane-lambert --family phase --dot-spacing 4 --camera 160x128 "
+                             "--projector 128x80 -o " +
+                             out.string())
+                .exit_code,
+            0);
+  nlohmann::json manifest;
+  std::ifstream(out / "capture" / "manifest.json") >> manifest;
+  ASSERT_EQ(manifest.at("frames").back().at("pattern"), "dot");
+  EXPECT_EQ(manifest.at("frames").back().at("dot_offset"), nlohmann::json::array({3, 3}));
+  const auto decoded =
+      testing::run_cli("-q transport " + (out / "capture").string() + " -o " + (out / "T.h5").string());
+  ASSERT_EQ(decoded.exit_code, 0) << decoded.output;
+  const CompressedTransport t = read_transport(out / "T.h5");
+  EXPECT_EQ(t.protocol(), "phase+dots");
+  for (const std::string method : {"triangulate", "fused"}) {
+    const auto run = testing::run_cli("-q reconstruct " + (out / "T.h5").string() + " --calib " +
+                                      (out / "truth" / "rig.yaml").string() + " --method " + method + " -o " +
+                                      (out / method).string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+  }
+  const std::string both = (out / "triangulate").string() + " " + (out / "fused").string();
+  const auto [coverage, fused_mm] = evaluated(out / "fused", out, both);
+  const auto [same, triangulated_mm] = evaluated(out / "triangulate", out, both);
+  std::printf("phase + dots on the plane: %.1f %% covered, depth RMS fused %.4f mm, triangulated %.4f mm\n", coverage,
+              fused_mm, triangulated_mm);
+  EXPECT_GT(coverage, 60.0);
+  EXPECT_EQ(coverage, same);
+  EXPECT_LT(fused_mm, 0.2);  // 0.05 % of the 400 mm plane
+  EXPECT_LT(fused_mm, 0.3 * triangulated_mm);
+}
+
+// Renders scene_file with the family's options and a noise seed into `out`, and decodes its T into out/T.h5.
+void render_and_decode(const fs::path& scene_file, const std::string& options, int seed, const fs::path& out) {
+  const auto simulated = testing::run_cli("-q simulate --scene " + scene_file.string() + " " + options + " --seed " +
+                                          std::to_string(seed) + " -o " + out.string());
+  ASSERT_EQ(simulated.exit_code, 0) << simulated.output;
+  const auto decoded =
+      testing::run_cli("-q transport " + (out / "capture").string() + " -o " + (out / "T.h5").string());
+  ASSERT_EQ(decoded.exit_code, 0) << decoded.output;
 }
 
 // The table of docs/accuracy.md ("Phase shifting"): Gray code, phase shifting unwrapped by the order code and by longer
 // periods (ratio 4) on the same renderings of the cube and the board, in focus and defocused, over three noise seeds;
 // correspondence (column) and triangulated depth RMS on the pixels all three decode (the phase families alone where
 // Gray code reconstructs nothing). Run by hand:
-// phase_family_test --gtest_also_run_disabled_tests --gtest_filter='*Table*'.
+// phase_family_test --gtest_also_run_disabled_tests --gtest_filter='*.DISABLED_TableOf*'.
 TEST(PhaseFamilyTest, DISABLED_TableOfCubeAndBoardOverSeeds) {
   testing::TempDir dir("phase_table");
   const std::string families[3] = {"--family graycode", "--family phase", "--family phase --phase-ratio 4"};
@@ -209,24 +284,13 @@ TEST(PhaseFamilyTest, DISABLED_TableOfCubeAndBoardOverSeeds) {
     const fs::path base = dir.path() / name;
     ASSERT_EQ(testing::run_cli("-q simulate --scene " + name + " --dot-spacing 0 -o " + base.string()).exit_code, 0);
     for (const double defocus : {0.0, 2.5, 4.0}) {
-      nlohmann::json scene;
-      std::ifstream(base / "scene.json") >> scene;
-      scene["render"]["projector_defocus_px"] = defocus;
-      const fs::path scene_file = dir.path() / (name + std::to_string(defocus) + ".json");
-      std::ofstream(scene_file) << scene.dump(2);
+      const fs::path scene_file = defocused_scene(base, dir.path(), name, defocus);
       for (const int seed : {1, 2, 3}) {
         fs::path out[3];
         cv::Mat depth[3];
         for (const int f : {0, 1, 2}) {
           out[f] = dir.path() / (name + std::to_string(defocus) + std::to_string(seed) + "_" + std::to_string(f));
-          ASSERT_EQ(testing::run_cli("-q simulate --scene " + scene_file.string() + " " + families[f] +
-                                     " --dot-spacing 0 --seed " + std::to_string(seed) + " -o " + out[f].string())
-                        .exit_code,
-                    0);
-          ASSERT_EQ(
-              testing::run_cli("-q transport " + (out[f] / "capture").string() + " -o " + (out[f] / "T.h5").string())
-                  .exit_code,
-              0);
+          ASSERT_NO_FATAL_FAILURE(render_and_decode(scene_file, families[f] + " --dot-spacing 0", seed, out[f]));
           const auto reconstructed = testing::run_cli("-q reconstruct " + (out[f] / "T.h5").string() + " --calib " +
                                                       (out[f] / "truth" / "rig.yaml").string() +
                                                       " --method triangulate -o " + (out[f] / "rec").string());
@@ -236,14 +300,19 @@ TEST(PhaseFamilyTest, DISABLED_TableOfCubeAndBoardOverSeeds) {
                          ? cv::imread((out[f] / "rec" / "depth.tiff").string(), cv::IMREAD_UNCHANGED)
                          : cv::Mat(cv::Size(1, 1), CV_32F, cv::Scalar(NAN));
         }
-        // Errors on the pixels every compared family decodes (all three but where the defocus defeats Gray code),
-        // columns against the true correspondences, depths against the true depth.
-        bool compared[3];  // reconstructs anything
-        for (int f = 0; f < 3; ++f) compared[f] = depth[f].total() > 1;
+        // Errors on the pixels every compared family decodes (all three but where the defocus defeats Gray code, which
+        // then reconstructs nothing or a few pixels), columns against the true correspondences, depths against the
+        // true depth.
+        const cv::Mat truth = cv::imread((out[0] / "truth" / "depth.tiff").string(), cv::IMREAD_UNCHANGED);
+        bool compared[3];  // reconstructs at least 1 % of the pixels with a true depth
+        for (int f = 0; f < 3; ++f) {
+          const cv::Mat has_truth = truth > 0.0f;
+          compared[f] = depth[f].total() > 1 &&
+                        cv::countNonZero(has_truth & (depth[f] == depth[f])) >= 0.01 * cv::countNonZero(has_truth);
+        }
         const CompressedTransport t[3] = {read_transport(out[0] / "T.h5"), read_transport(out[1] / "T.h5"),
                                           read_transport(out[2] / "T.h5")};
         const cv::Mat seen = cv::imread((out[0] / "truth" / "correspondences.tiff").string(), cv::IMREAD_UNCHANGED);
-        const cv::Mat truth = cv::imread((out[0] / "truth" / "depth.tiff").string(), cv::IMREAD_UNCHANGED);
         double column[3] = {0, 0, 0}, z[3] = {0, 0, 0};
         std::size_t columns = 0, both = 0, covered[3] = {0, 0, 0}, object = 0;
         for (std::size_t c = 0; c < truth.total(); ++c) {
@@ -287,6 +356,52 @@ TEST(PhaseFamilyTest, DISABLED_TableOfCubeAndBoardOverSeeds) {
                     100.0 * covered[0] / object, 100.0 * covered[1] / object, 100.0 * covered[2] / object, both,
                     rms(column, columns).c_str(), rms(z, both).c_str());
         std::fflush(stdout);
+      }
+    }
+  }
+}
+
+// The table of docs/accuracy.md ("Phase shifting with the dot grid"): Gray code and phase shifting, each followed by
+// the dot grid of spacing 8, on the same renderings of the cube and the board, in focus and slightly defocused, over
+// three noise seeds; per depth method, each family's coverage and both families' depth RMS on the pixels both
+// reconstruct. Run by hand: phase_family_test --gtest_also_run_disabled_tests --gtest_filter='*DotGridTable*'.
+TEST(PhaseFamilyTest, DISABLED_DotGridTableOfCubeAndBoardOverSeeds) {
+  testing::TempDir dir("phase_dots_table");
+  const std::string families[2] = {"graycode", "phase"};
+  const std::string methods[3] = {"triangulate", "integrate", "fused"};
+  std::printf(
+      "| scene | defocus (px) | seed | method | coverage Gray / phase (%%) | both (%%) | depth RMS Gray / phase "
+      "(mm) |\n");
+  for (const std::string name : {"cube-anisotropic", "board-plane"}) {
+    const fs::path base = dir.path() / name;
+    ASSERT_EQ(testing::run_cli("-q simulate --scene " + name + " --dot-spacing 0 -o " + base.string()).exit_code, 0);
+    for (const double defocus : {0.0, 1.0, 1.5}) {
+      const fs::path scene_file = defocused_scene(base, dir.path(), name, defocus);
+      for (const int seed : {1, 2, 3}) {
+        fs::path out[2];
+        for (const int f : {0, 1}) {
+          out[f] = dir.path() / (name + std::to_string(defocus) + std::to_string(seed) + families[f]);
+          ASSERT_NO_FATAL_FAILURE(
+              render_and_decode(scene_file, "--family " + families[f] + " --dot-spacing 8", seed, out[f]));
+          for (const auto& method : methods) {
+            const auto run = testing::run_cli("-q reconstruct " + (out[f] / "T.h5").string() + " --calib " +
+                                              (out[f] / "truth" / "rig.yaml").string() + " --method " + method +
+                                              " -o " + (out[f] / method).string());
+            ASSERT_TRUE(run.exit_code == 0 || run.exit_code == 6) << run.output;  // 6: nothing reconstructed
+          }
+        }
+        for (const auto& method : methods) {
+          double alone[2] = {0, 0}, rms[2] = {NAN, NAN}, both = 0.0;
+          for (const int f : {0, 1}) {
+            if (!fs::exists(out[f] / method / "depth.tiff")) continue;
+            alone[f] = evaluated(out[f] / method, out[f], "").first;
+            if (!fs::exists(out[1 - f] / method / "depth.tiff")) continue;
+            std::tie(both, rms[f]) = evaluated(out[f] / method, out[f], (out[1 - f] / method).string());
+          }
+          std::printf("| %s | %.1f | %d | %s | %.1f / %.1f | %.1f | %.3f / %.3f |\n", name.c_str(), defocus, seed,
+                      method.c_str(), alone[0], alone[1], both, rms[0], rms[1]);
+          std::fflush(stdout);
+        }
       }
     }
   }

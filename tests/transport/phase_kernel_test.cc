@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "host/capture/phase_patterns.h"
 #include "host/cl/device_selection.h"
 #include "host/transport/phase_accumulators.h"
 #include "kernels/common/params.h"
@@ -20,8 +21,8 @@ constexpr KernelEntry kEntries[] = {KernelEntry::kNdRange, KernelEntry::kSingleW
 
 // Unwrapped by the order code: 5 steps of period 4 (one partial batch per axis), RF_FRAME_BATCH + 2 steps of period 6
 // (a full and a partial one); by longer periods: ratio 2 (periods 4, 8, 16, 32 of the columns, 4, 8, 16, 28 of the
-// rows) and ratio 4 (4, 16, 32 and 4, 16, 28).
-constexpr testing::PhaseParameters kCases[] = {{5, 4}, {RF_FRAME_BATCH + 2, 6}, {4, 4, 2}, {5, 4, 4}};
+// rows) and ratio 4 (4, 16, 32 and 4, 16, 28); then a 5 x 5 dot grid (a full and a partial batch of RF_FRAME_BATCH).
+constexpr testing::PhaseParameters kCases[] = {{5, 4}, {RF_FRAME_BATCH + 2, 6}, {4, 4, 2}, {5, 4, 4}, {4, 4, 0, 5}};
 
 class PhaseKernelTest : public ::testing::Test {
  protected:
@@ -32,7 +33,7 @@ class PhaseKernelTest : public ::testing::Test {
 TEST_F(PhaseKernelTest, StepsOrderPairsAndFinalizeMatchReference) {
   for (const auto phase : kCases) {
     SCOPED_TRACE("steps " + std::to_string(phase.steps) + " period " + std::to_string(phase.period) + " ratio " +
-                 std::to_string(phase.ratio));
+                 std::to_string(phase.ratio) + " dots " + std::to_string(phase.dot_spacing));
     const auto capture = testing::tiny_phase_capture(phase);
     const auto linear = testing::linearize(capture.frames);
     auto setup = testing::phase_setup_for(linear, phase, 3);
@@ -51,6 +52,44 @@ TEST_F(PhaseKernelTest, StepsOrderPairsAndFinalizeMatchReference) {
     }
     ASSERT_GT(valid, expected.camera_pixels() / 2) << "the reference must decode most of the plane";
     EXPECT_GT(close, valid * 9 / 10) << "the reference's correspondences must lie near the truth";
+    if (phase.ratio == 0) {
+      // A pixel whose order pair is too weak to decide lies at that stripe's edge: it is decoded, and as close.
+      const float white = resolve_thresholds(setup.thresholds, 8).white;
+      std::size_t undecided = 0, undecided_close = 0;
+      for (std::size_t c = 0; c < expected.camera_pixels(); ++c) {
+        bool weak = false;
+        for (std::size_t f = 0; f + 1 < capture.sequence.size(); ++f) {
+          const auto& pattern = capture.sequence[f];
+          if ((pattern.kind != capture::pattern_kind::kOrderColumn &&
+               pattern.kind != capture::pattern_kind::kOrderRow) ||
+              pattern.inverse) {
+            continue;
+          }
+          weak = weak || std::abs(linear[f].ptr<float>()[c] - linear[f + 1].ptr<float>()[c]) <= white;
+        }
+        if (!weak || (expected.flags[c] & kFlagValid) == 0) continue;
+        ++undecided;
+        const auto truth = capture.scene.correspondence.at<cv::Vec2f>(static_cast<int>(c));
+        undecided_close +=
+            std::hypot(expected.correspondence[2 * c] - truth[0], expected.correspondence[2 * c + 1] - truth[1]) < 0.3
+                ? 1
+                : 0;
+      }
+      EXPECT_GT(undecided, 0U) << "some decoded pixel must straddle an order stripe's edge";
+      EXPECT_EQ(undecided_close, undecided) << "an order pair undecided at its edge must not move the correspondence";
+    }
+    if (phase.dot_spacing > 0) {
+      // Each decoded pixel's strongest dot is the one nearest its correspondence: within half the spacing per axis.
+      std::size_t near_dot = 0;
+      for (std::size_t c = 0; c < expected.camera_pixels(); ++c) {
+        const int q = expected.indices[c * static_cast<std::size_t>(expected.k())];
+        if ((expected.flags[c] & kFlagValid) == 0 || q < 0) continue;
+        const float dx = static_cast<float>(q % 16) - expected.correspondence[2 * c];
+        const float dy = static_cast<float>(q / 16) - expected.correspondence[2 * c + 1];
+        near_dot += std::abs(dx) <= 0.5f * phase.dot_spacing + 0.5f && std::abs(dy) <= 0.5f * phase.dot_spacing + 0.5f;
+      }
+      EXPECT_GT(near_dot, valid * 9 / 10) << "the dot frames must fill the rows at the phases' projector pixels";
+    }
 
     setup.frame_depth = CV_8U;
     setup.samples = {0.0f, 1.0f / 255.0f};

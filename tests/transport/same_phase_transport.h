@@ -1,7 +1,8 @@
 // The comparison of two phase-family transports, one from a float implementation (the kernels, the HLS tops: OpenCL's
-// atan2 within 6 ulp) and one from the C++ reference (double): flags, energies and T's weights bit for bit,
-// correspondences within 1e-4 projector pixel, projector pixels (the correspondences rounded, and T's one entry there)
-// equal but where a correspondence lies that close to a pixel edge.
+// atan2 within 6 ulp) and one from the C++ reference (double): flags bit for bit, correspondences within 1e-4
+// projector pixel; projector pixels (the correspondences rounded), T's rows and energies bit for bit but where a
+// correspondence lies that close to a pixel edge (the pixel, and so the dots a row holds, may differ there), or where a
+// low-contrast pixel (no correspondence) has its projector pixel one off.
 #pragma once
 
 #include <cmath>
@@ -21,29 +22,33 @@ inline bool at_pixel_edge(float a, float b) {
 
 inline void expect_same_phase_transport(const CompressedTransport& got, const CompressedTransport& expected) {
   ASSERT_EQ(got.camera_pixels(), expected.camera_pixels());
+  ASSERT_EQ(got.k(), expected.k());
   EXPECT_EQ(got.flags, expected.flags);
-  EXPECT_EQ(got.weights, expected.weights);
-  EXPECT_EQ(got.direct_energy, expected.direct_energy);
   const std::size_t k = static_cast<std::size_t>(expected.k());
   for (std::size_t c = 0; c < expected.camera_pixels(); ++c) {
     const float* u = &got.correspondence[2 * c];
     const float* e = &expected.correspondence[2 * c];
-    if (std::isnan(e[0])) {
+    const bool decoded = !std::isnan(e[0]);
+    if (decoded) {
+      EXPECT_NEAR(u[0], e[0], kToleranceProjectorPx) << c;
+      EXPECT_NEAR(u[1], e[1], kToleranceProjectorPx) << c;
+    } else {
       EXPECT_TRUE(std::isnan(u[0]) && std::isnan(u[1])) << c;
-      EXPECT_EQ(got.gray_x[c], expected.gray_x[c]) << c;
-      EXPECT_EQ(got.gray_y[c], expected.gray_y[c]) << c;
-      EXPECT_EQ(got.indices[c * k], expected.indices[c * k]) << c;
+    }
+    if (decoded && (at_pixel_edge(u[0], e[0]) || at_pixel_edge(u[1], e[1]))) continue;
+    if (!decoded && (got.gray_x[c] != expected.gray_x[c] || got.gray_y[c] != expected.gray_y[c])) {
+      // A low-contrast pixel's projector pixel, rounded from the same phase in float and in double, at a pixel edge.
+      EXPECT_LE(std::abs(static_cast<long>(got.gray_x[c]) - static_cast<long>(expected.gray_x[c])), 1) << c;
+      EXPECT_LE(std::abs(static_cast<long>(got.gray_y[c]) - static_cast<long>(expected.gray_y[c])), 1) << c;
       continue;
     }
-    EXPECT_NEAR(u[0], e[0], kToleranceProjectorPx) << c;
-    EXPECT_NEAR(u[1], e[1], kToleranceProjectorPx) << c;
-    const bool edge = at_pixel_edge(u[0], e[0]) || at_pixel_edge(u[1], e[1]);
-    if (!edge) {
-      EXPECT_EQ(got.gray_x[c], expected.gray_x[c]) << c;
-      EXPECT_EQ(got.gray_y[c], expected.gray_y[c]) << c;
-      EXPECT_EQ(got.indices[c * k], expected.indices[c * k]) << c;
+    EXPECT_EQ(got.gray_x[c], expected.gray_x[c]) << c;
+    EXPECT_EQ(got.gray_y[c], expected.gray_y[c]) << c;
+    EXPECT_EQ(got.direct_energy[c], expected.direct_energy[c]) << c;
+    for (std::size_t j = 0; j < k; ++j) {
+      EXPECT_EQ(got.indices[c * k + j], expected.indices[c * k + j]) << c << " entry " << j;
+      EXPECT_EQ(got.weights[c * k + j], expected.weights[c * k + j]) << c << " entry " << j;
     }
-    for (std::size_t j = 1; j < k; ++j) EXPECT_EQ(got.indices[c * k + j], -1) << c;
   }
 }
 

@@ -39,14 +39,14 @@ TinyCapture tiny_phase_capture(PhaseParameters phase) {
   SceneOptions options;
   options.camera_size = {24, 20};
   options.projector_size = {16, 12};
-  const capture::ProtocolOptions protocol{options.projector_size, 0, "phase", phase_parameters(phase)};
+  const capture::ProtocolOptions protocol{options.projector_size, phase.dot_spacing, "phase", phase_parameters(phase)};
   TinyCapture capture{make_plane_scene(options), capture::make_protocol(protocol), {}};
   capture.frames = render_frames(capture.scene, capture.sequence, protocol, 1.0, 7);
   return capture;
 }
 
 TransportSetup phase_setup_for(const std::vector<cv::Mat>& frames, PhaseParameters phase, int k) {
-  TransportSetup setup = setup_for(frames, {16, 12}, 0, k);
+  TransportSetup setup = setup_for(frames, {16, 12}, phase.dot_spacing, k);
   setup.family = "phase";
   setup.parameters = phase_parameters(phase);
   return setup;

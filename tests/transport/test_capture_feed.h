@@ -31,7 +31,8 @@ std::optional<TinyCapture> tiny_gray_capture_over_batches();
 struct PhaseParameters {
   int steps;
   int period;
-  int ratio = 0;  // 0: unwrapped by the order code
+  int ratio = 0;        // 0: unwrapped by the order code
+  int dot_spacing = 0;  // the dot grid after the phases, or none
 };
 
 // The tiny capture through the phase family's sequence on a 16 x 12 projector.

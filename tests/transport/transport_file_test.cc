@@ -479,6 +479,14 @@ TEST_F(TransportFileTest, LongStringAttributesFailAndAreQuotedInPart) {
   EXPECT_TRUE(contains(message, "attribute 'protocol' is 'ppp")) << message;
   EXPECT_TRUE(contains(message, "(250 bytes)")) << message;
   EXPECT_LT(message.size(), file_.string().size() + 200) << message;
+
+  // A family's name without "+dots" where the file has a dot grid (dot_spacing 3).
+  write_transport(small_transport(), file_);
+  const std::string phase = "phase";
+  replace_attribute(file_, "protocol", H5::StrType(H5::PredType::C_S1, phase.size()), phase.c_str());
+  message = read_error();
+  EXPECT_TRUE(contains(message, "'phase': with dot_spacing 3 it is 'gray+dots' or a family's name and '+dots'"))
+      << message;
 }
 
 TEST_F(TransportFileTest, UnwritableOutputsFailNamingThePathAndLeaveNothing) {
