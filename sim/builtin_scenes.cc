@@ -195,7 +195,7 @@ Scene resolve_scene(const std::string& name_or_file, const SceneChanges& changes
   for (const auto& [name, value] : changes.parameters) scene.capture.parameters[name] = value;
   capture::check_family_parameters(capture::pattern_family(scene.capture.family), scene.capture.parameters, "simulate");
   if (changes.dot_spacing) {
-    if (*changes.dot_spacing == 1) throw InputError("--dot-spacing must be 0 (Gray code only) or at least 2");
+    if (*changes.dot_spacing == 1) throw InputError("--dot-spacing must be 0 (no dot grid) or at least 2");
     scene.capture.dot_spacing = *changes.dot_spacing;
   }
   if (changes.seed) scene.render.seed = *changes.seed;

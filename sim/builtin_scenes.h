@@ -35,7 +35,7 @@ struct SceneChanges {
   std::optional<int> supersample;           // rays per pixel side
   std::string family;                       // a pattern family; other than graycode, the dot spacing is 0 unless given
   std::map<std::string, int> parameters{};  // the family's parameters (replacing the scene's when family is given)
-  std::optional<int> dot_spacing;           // 0 (Gray code only) or at least 2: InputError for 1
+  std::optional<int> dot_spacing;           // 0 (no dot grid) or at least 2: InputError for 1
   std::optional<unsigned long long> seed;   // the frames' noise seed
 };
 

@@ -25,7 +25,7 @@ struct CaptureManifest {
   cv::Size projector_size;
   std::string family = kDefaultFamily;      // the pattern family (host/capture/pattern_family.h)
   cv::Size camera_size;                     // {0, 0} in a projector-side (patterns) manifest
-  int dot_spacing = 0;                      // the graycode family's dot grid; 0 when there is none
+  int dot_spacing = 0;                      // the dot grid after the family's patterns; 0 when there is none
   std::map<std::string, int> parameters{};  // the family's parameters (host/capture/pattern_family.h)
   int bit_depth = 8;                        // bits per camera sample: 8, 10, 12 or 16 (stored in 8- or 16-bit files)
   double black_level = 0.0;                 // camera reading with no light, in digital numbers

@@ -36,7 +36,7 @@ inline constexpr const char* kDefaultFamily = "graycode";
 
 struct ProtocolOptions {
   cv::Size projector_size;  // projector resolution in pixels
-  int dot_spacing = 0;      // s of the s x s dot-grid scan; 0 = no dot grid (Gray code only)
+  int dot_spacing = 0;      // s of the s x s dot-grid scan after the family's patterns; 0 = no dot grid
   std::string family = kDefaultFamily;
   std::map<std::string, int> parameters{};  // the family's parameters given (PatternFamily::parameters); others default
 };
