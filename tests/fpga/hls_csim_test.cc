@@ -230,7 +230,8 @@ TEST(HlsCsim, GrayPairsTopOverAFullAndAPartialBatchMatchesReference) {
 }
 
 // The phase family on the HLS tops: phase steps RF_FRAME_BATCH of one axis per call, order pairs RF_GRAY_PAIR_BATCH
-// per call of gray_pairs_single, as the device accumulator batches them.
+// per call of gray_pairs_single, then the dot frames RF_FRAME_BATCH per call of dot_frames_single, as the device
+// accumulator batches them.
 class HlsPhaseAccumulator final : public TransportAccumulator {
  public:
   explicit HlsPhaseAccumulator(TransportSetup setup)
@@ -263,6 +264,12 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
       phase_fold_single(axis, periods_[axis].at(level), level + 1 == static_cast<int>(periods_[axis].size()) ? 1 : 0,
                         0.5f * static_cast<float>(n - 1), steps_, t_.setup.thresholds.white, sums_.data(),
                         estimates_.data(), t_.flags.data(), n_);
+    } else if (step.op == kPhaseDotStep) {
+      if (!resolved_) resolve();
+      std::copy_n(frames.at(0).ptr<float>(), n_, batch_.begin() + static_cast<std::ptrdiff_t>(dots_pending_ * n_));
+      offsets_[2 * dots_pending_] = step.args[0];
+      offsets_[2 * dots_pending_ + 1] = step.args[1];
+      if (++dots_pending_ == RF_FRAME_BATCH) add_dots();
     } else {
       if (steps_pending_ > 0) add_steps();
       const auto frame = batch_.begin() + static_cast<std::ptrdiff_t>(2 * pairs_pending_ * n_);
@@ -275,6 +282,21 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
   }
 
   CompressedTransport finish() override {
+    if (!resolved_) resolve();
+    if (dots_pending_ > 0) add_dots();
+    if (t_.setup.dot_spacing > 0) {  // the rows' centroids to scratch: the phases' correspondences stay
+      std::vector<float> centroids(2 * static_cast<std::size_t>(n_));
+      finalize_single(white_.ptr<float>(), black_.ptr<float>(), 1, t_.setup.projector_size.width,
+                      t_.setup.thresholds.noise, t_.flags.data(), t_.gray_x.data(), t_.gray_y.data(), t_.indices.data(),
+                      t_.weights.data(), t_.direct_energy.data(), centroids.data(), n_);
+    }
+    return std::move(t_);
+  }
+
+ private:
+  // phase_finalize_single; with the dot grid, T's rows and energies cleared for the dot frames.
+  void resolve() {
+    resolved_ = true;
     if (steps_pending_ > 0) add_steps();
     if (pairs_pending_ > 0) add_pairs();
     phase_finalize_single(white_.ptr<float>(), black_.ptr<float>(), t_.setup.thresholds.black,
@@ -282,10 +304,21 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
                           t_.setup.projector_size.width, t_.setup.projector_size.height, t_.k(), t_.gray_x.data(),
                           t_.gray_y.data(), sums_.data(), estimates_.data(), t_.flags.data(), t_.indices.data(),
                           t_.weights.data(), t_.direct_energy.data(), t_.correspondence.data(), n_);
-    return std::move(t_);
+    if (t_.setup.dot_spacing == 0) return;
+    std::fill(t_.indices.begin(), t_.indices.end(), -1);
+    std::fill(t_.weights.begin(), t_.weights.end(), 0.0f);
+    std::fill(t_.direct_energy.begin(), t_.direct_energy.end(), 0.0f);
   }
 
- private:
+  void add_dots() {
+    dot_frames_single(batch_.data(), static_cast<int>(dots_pending_), offsets_.data(), t_.setup.dot_spacing,
+                      t_.setup.projector_size.width, t_.setup.projector_size.height, t_.setup.thresholds.noise,
+                      black_.ptr<float>(), t_.flags.data(), t_.gray_x.data(), t_.gray_y.data(), t_.indices.data(),
+                      t_.weights.data(), t_.direct_energy.data(), n_);
+    dots_pending_ = 0;
+    offsets_.fill(0);
+  }
+
   void add_steps() {
     phase_steps_single(batch_.data(), axis_, static_cast<int>(steps_pending_), shifts_.data(), sums_.data(), n_);
     steps_pending_ = 0;
@@ -313,15 +346,20 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
   std::array<float, 2 * RF_FRAME_BATCH> shifts_ = {};
   unsigned pairs_pending_ = 0;
   std::array<unsigned, 2 * RF_GRAY_PAIR_BATCH> pairs_ = {};
+  bool resolved_ = false;
+  unsigned dots_pending_ = 0;
+  std::array<int, 2 * RF_FRAME_BATCH> offsets_ = {};
 };
 
 // 5 steps of period 4 (a partial batch per axis) and RF_FRAME_BATCH + 2 steps of period 6 (a full and a partial one)
-// unwrapped by the order code, and 4 steps of period 4 unwrapped by periods 8, 16, ... (ratio 2).
+// unwrapped by the order code, 4 steps of period 4 unwrapped by periods 8, 16, ... (ratio 2), and a 5 x 5 dot grid
+// after 4 steps of period 4 (25 dot frames: a full and a partial batch).
 TEST(HlsCsim, PhaseTopsMatchReference) {
   for (const testing::PhaseParameters phase :
        {testing::PhaseParameters{5, 4}, testing::PhaseParameters{RF_FRAME_BATCH + 2, 6},
-        testing::PhaseParameters{4, 4, 2}}) {
-    SCOPED_TRACE("steps " + std::to_string(phase.steps) + " ratio " + std::to_string(phase.ratio));
+        testing::PhaseParameters{4, 4, 2}, testing::PhaseParameters{4, 4, 0, 5}}) {
+    SCOPED_TRACE("steps " + std::to_string(phase.steps) + " ratio " + std::to_string(phase.ratio) + " dots " +
+                 std::to_string(phase.dot_spacing));
     const auto capture = testing::tiny_phase_capture(phase);
     const auto linear = testing::linearize(capture.frames);
     const auto setup = testing::phase_setup_for(linear, phase, RF_K);
