@@ -1,5 +1,5 @@
 // Capture checks on a grid of sampled pixels: the frames' sums against white and black, the response gamma that
-// makes them add up, black level, saturation, exposure, bit depth and the Gray pairs' order.
+// makes them add up, black level, saturation, exposure, bit depth and the pattern / inverse pairs' order.
 #include "host/capture/capture_checks.h"
 
 #include <algorithm>
@@ -12,6 +12,7 @@
 
 #include "host/capture/frame_read_ahead.h"
 #include "host/capture/graycode_patterns.h"
+#include "host/capture/phase_patterns.h"
 #include "host/core/errors.h"
 #include "host/core/percentile.h"
 
@@ -123,12 +124,14 @@ void CaptureChecks::add(std::size_t index, const cv::Mat& frame) {
 
 namespace {
 
-// The frames of a manifest by role.
+// The frames of a manifest by role. Pairs: a pattern and its inverse, Gray code's (axes 0, 1) or the phase family's
+// order code (axes 2, 3). Phase steps: the N steps of one period of one axis, which add up to N / 2 (white + black).
 struct Roles {
   std::size_t white = SIZE_MAX;
   std::size_t black = SIZE_MAX;
   std::map<std::pair<int, int>, std::pair<std::size_t, std::size_t>> pairs;  // (axis, bit) -> (pattern, inverse)
   std::vector<std::size_t> dots;
+  std::map<std::pair<int, int>, std::vector<std::size_t>> phase_steps;  // (axis, level) -> steps
 };
 
 Roles roles_of(const CaptureManifest& manifest) {
@@ -139,10 +142,16 @@ Roles roles_of(const CaptureManifest& manifest) {
       roles.white = i;
     } else if (pattern.kind == pattern_kind::kBlack) {
       roles.black = i;
-    } else if (is_gray(pattern)) {
-      const int axis = pattern.kind == pattern_kind::kGrayColumn ? 0 : 1;
+    } else if (is_gray(pattern) || pattern.kind == pattern_kind::kOrderColumn ||
+               pattern.kind == pattern_kind::kOrderRow) {
+      const int axis = pattern.kind == pattern_kind::kGrayColumn    ? 0
+                       : pattern.kind == pattern_kind::kGrayRow     ? 1
+                       : pattern.kind == pattern_kind::kOrderColumn ? 2
+                                                                    : 3;
       auto& pair = roles.pairs.try_emplace({axis, pattern.bit}, SIZE_MAX, SIZE_MAX).first->second;
       (pattern.inverse ? pair.second : pair.first) = i;
+    } else if (pattern.kind == pattern_kind::kPhaseColumn || pattern.kind == pattern_kind::kPhaseRow) {
+      roles.phase_steps[{pattern.kind == pattern_kind::kPhaseColumn ? 0 : 1, pattern.level}].push_back(i);
     } else if (pattern.kind == pattern_kind::kDot) {
       roles.dots.push_back(i);
     }
@@ -309,6 +318,30 @@ CaptureCheckResult CaptureChecks::finish() const {
     }
     if (largest > 0.9 || total - largest < 0.2) continue;
     identities.push_back({std::move(dots), std::move(rhs)});
+  }
+  // Phase steps whose sinusoid spans at least 0.3 of white - black (in readings): 2 sum of step^g = N (white^g +
+  // black^g), both sides doubled for an odd N.
+  for (std::size_t s = 0; s < n; ++s) {
+    if (!masks.usable(s)) continue;
+    const double uw = readings.reading(roles.white, s), ub = readings.reading(roles.black, s);
+    if (uw - ub < 0.1) continue;
+    for (const auto& [key, steps] : roles.phase_steps) {
+      if (steps.size() < 3 ||
+          !std::all_of(steps.begin(), steps.end(), [&](std::size_t f) { return readings.has(f); })) {
+        continue;
+      }
+      std::vector<double> lhs, rhs;
+      double lowest = 1.0, highest = 0.0;
+      for (const std::size_t f : steps) {
+        const double u = readings.reading(f, s);
+        lhs.insert(lhs.end(), 2, u);
+        rhs.push_back(uw);
+        rhs.push_back(ub);
+        lowest = std::min(lowest, (u - ub) / (uw - ub));
+        highest = std::max(highest, (u - ub) / (uw - ub));
+      }
+      if (highest - lowest >= 0.3) identities.push_back({std::move(lhs), std::move(rhs)});
+    }
   }
   const std::size_t step =
       std::max<std::size_t>(1, (identities.size() + kMaxResponseSamples - 1) / kMaxResponseSamples);

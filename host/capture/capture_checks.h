@@ -70,9 +70,9 @@ class CaptureChecks {
   // Frame `index` of the manifest: linear CV_32F (capture::linearize_frame) or raw CV_8U / CV_16U samples.
   void add(std::size_t index, const cv::Mat& frame);
 
-  // One frame's noise sigma in linear units, from the Gray pairs added so far: 1.4826 MAD / 2 of
-  // pattern + inverse - white - black over lit, unsaturated sampled pixels (four frames of about equal noise), at
-  // least the quantisation's 1 / (span sqrt 12). NaN before white, black and one pair are in.
+  // One frame's noise sigma in linear units, from the pattern / inverse pairs (Gray or order code) added so far: 1.4826
+  // MAD / 2 of pattern + inverse - white - black over lit, unsaturated sampled pixels (four frames of about equal
+  // noise), at least the quantisation's 1 / (span sqrt 12). NaN before white, black and one pair are in.
   double noise_sigma() const;
 
   // The measures and findings over the frames added (all of them, for a complete check); thresholds in

@@ -15,6 +15,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "host/capture/graycode_patterns.h"
+#include "host/capture/phase_patterns.h"
 #include "host/core/errors.h"
 #include "host/transport/compute_transport.h"
 #include "tests/capture/rendered_capture.h"
@@ -94,6 +95,29 @@ TEST(CaptureChecksTest, GammaIsEstimatedFromGrayPairsAlone) {
   const auto result = check_capture(dir.path(), manifest);
   ASSERT_TRUE(has_finding(result, "response")) << findings_text(result);
   EXPECT_NEAR(result.response_gamma, 2.2, 0.11);
+}
+
+// Phase captures: the N steps of each period add up to N / 2 (white + black), an identity every lit pixel under a
+// visible sinusoid gives; with longer periods (no order code) it is the only one. Linear: no finding, gamma 1 within
+// 5 %; gamma 2.2 declared linear: caught, within 5 %.
+TEST(CaptureChecksTest, GammaIsEstimatedFromPhaseSteps) {
+  for (const int ratio : {0, 4}) {
+    SCOPED_TRACE("phase_ratio " + std::to_string(ratio));
+    for (const double gamma : {1.0, 2.2}) {
+      rfrecon::testing::TempDir dir("checks_gamma_phase");
+      auto manifest = render(dir.path(), [&](sim::Scene& scene) {
+        scene.capture.response_gamma = gamma;
+        scene.capture.dot_spacing = 0;
+        scene.capture.family = "phase";
+        scene.capture.parameters = {{kPhaseRatio, ratio}};
+      });
+      manifest.camera_response = "linear";
+      const auto result = check_capture(dir.path(), manifest);
+      EXPECT_EQ(has_finding(result, "response"), gamma != 1.0) << findings_text(result);
+      EXPECT_NEAR(result.response_gamma, gamma, 0.05 * gamma);
+      EXPECT_GE(result.response_samples, 50U);
+    }
+  }
 }
 
 TEST(CaptureChecksTest, SaturatedRenderIsCaughtWithItsShare) {
