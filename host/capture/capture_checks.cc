@@ -319,8 +319,9 @@ CaptureCheckResult CaptureChecks::finish() const {
     if (largest > 0.9 || total - largest < 0.2) continue;
     identities.push_back({std::move(dots), std::move(rhs)});
   }
-  // Phase steps whose sinusoid spans at least 0.3 of white - black (in readings): 2 sum of step^g = N (white^g +
-  // black^g), both sides doubled for an odd N.
+  // Phase steps whose sinusoid spans at least 0.3 of white - black (in readings): sum of step^g = N / 2 (white^g +
+  // black^g), both sides doubled for an odd N. One period of one axis per pixel (the first that qualifies), so the
+  // identities stay as many as the sampled pixels whatever N.
   for (std::size_t s = 0; s < n; ++s) {
     if (!masks.usable(s)) continue;
     const double uw = readings.reading(roles.white, s), ub = readings.reading(roles.black, s);
@@ -330,17 +331,22 @@ CaptureCheckResult CaptureChecks::finish() const {
           !std::all_of(steps.begin(), steps.end(), [&](std::size_t f) { return readings.has(f); })) {
         continue;
       }
+      const int copies = steps.size() % 2 == 0 ? 1 : 2;
       std::vector<double> lhs, rhs;
       double lowest = 1.0, highest = 0.0;
       for (const std::size_t f : steps) {
         const double u = readings.reading(f, s);
-        lhs.insert(lhs.end(), 2, u);
-        rhs.push_back(uw);
-        rhs.push_back(ub);
+        lhs.insert(lhs.end(), copies, u);
         lowest = std::min(lowest, (u - ub) / (uw - ub));
         highest = std::max(highest, (u - ub) / (uw - ub));
       }
-      if (highest - lowest >= 0.3) identities.push_back({std::move(lhs), std::move(rhs)});
+      if (highest - lowest < 0.3) continue;
+      for (std::size_t k = 0; k < steps.size() * static_cast<std::size_t>(copies) / 2; ++k) {
+        rhs.push_back(uw);
+        rhs.push_back(ub);
+      }
+      identities.push_back({std::move(lhs), std::move(rhs)});
+      break;
     }
   }
   const std::size_t step =
