@@ -100,10 +100,10 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
     if (!resolved_) resolve();
     if (dots_pending_ > 0) add_dots();
     if (setup_.dot_spacing > 0) {
-      // compress.cl's finalize flags the pixels no dot reached; its centroids go to scratch, the phases' stay.
-      const ::cl::Buffer centroids = cl::make_buffer<float>(device_.context(), 2 * state_.camera_pixels());
+      // compress.cl's finalize flags the pixels no dot reached; its centroids go to the phase sums (4 n floats, done
+      // with since phase_finalize), the phases' correspondences stay.
       cl::set_args(rows_finalize_, frames_.white(), frames_.black(), 1, setup_.projector_size.width,
-                   setup_.thresholds.noise, flags_, code_x_, code_y_, indices_, weights_, energy_, centroids,
+                   setup_.thresholds.noise, flags_, code_x_, code_y_, indices_, weights_, energy_, sums_,
                    frames_.count());
       frames_.run(rows_finalize_, frames_.count());
     }

@@ -90,7 +90,8 @@ class ReferenceAccumulator final : public GraycodeAccumulator {
     const int width = t_.setup.projector_size.width;
     const float* w = white_.ptr<float>();
     const float* b = black_.ptr<float>();
-    for (std::size_t c = 0; c < t_.camera_pixels() && t_.setup.dot_spacing == 0; ++c) {
+    const bool gray_only = t_.setup.dot_spacing == 0;
+    for (std::size_t c = 0; gray_only && c < t_.camera_pixels(); ++c) {
       if ((t_.flags[c] & kFlagValid) == 0 || !(w[c] - b[c] > t_.setup.thresholds.noise)) continue;
       const std::size_t row = c * static_cast<std::size_t>(t_.k());
       t_.indices[row] = static_cast<std::int32_t>(t_.gray_y[c] * static_cast<std::uint32_t>(width) + t_.gray_x[c]);
