@@ -17,22 +17,38 @@
 
 namespace rfrecon::capture {
 
-double phase_pattern_level(double x, int period, int step, int steps) {
-  const double two_pi = 2.0 * 3.14159265358979323846;
-  return 0.5 + 0.5 * std::cos(two_pi * x / period - two_pi * step / steps);
+double phase_shift_radians(int step, int steps, PhaseConvention convention) {
+  const double pi = 3.14159265358979323846;
+  return (convention.reversed ? -2.0 : 2.0) * pi * step / steps - pi * convention.origin_degrees / 180.0;
 }
 
-int phase_order(int x, int period) { return 2 * x / period; }
+double phase_pattern_level(double x, int period, int step, int steps, PhaseConvention convention) {
+  const double two_pi = 2.0 * 3.14159265358979323846;
+  return 0.5 + 0.5 * std::cos(two_pi * x / period - phase_shift_radians(step, steps, convention));
+}
 
-int phase_order_bits(int n, int period) { return gray_bits(phase_order(n - 1, period) + 1); }
+int phase_order(int x, int period, int unit) { return 2 * x / (unit * period); }
 
-std::vector<int> phase_periods(int n, int period, int ratio) {
+int phase_order_bits(int n, int period, int unit) { return gray_bits(phase_order(n - 1, period, unit) + 1); }
+
+std::vector<int> phase_periods(int n, int period, int ratio, bool spanning_last) {
   std::vector<int> periods{period};
   if (ratio == 0) return periods;
   if (ratio < 2) throw std::invalid_argument("phase_periods: ratio " + std::to_string(ratio) + " under 2");
+  if (spanning_last) {
+    while (periods.back() < n) periods.push_back(periods.back() * ratio);
+    return periods;
+  }
   while (periods.back() * (ratio - 1) < n) periods.push_back(periods.back() * ratio);
   periods.push_back(n + periods.back());
   return periods;
+}
+
+std::vector<int> phase_periods(const ProtocolOptions& options, bool columns) {
+  const PatternFamily& family = pattern_family("phase");
+  return phase_periods(columns ? options.projector_size.width : options.projector_size.height,
+                       family_parameter(family, options, kPhasePeriod), family_parameter(family, options, kPhaseRatio),
+                       family_parameter(family, options, kPhaseCoarsest) == 1);
 }
 
 namespace {
@@ -42,6 +58,12 @@ bool is_order(const Pattern& p) { return p.kind == pattern_kind::kOrderColumn ||
 bool on_columns(const Pattern& p) {
   return p.kind == pattern_kind::kPhaseColumn || p.kind == pattern_kind::kOrderColumn;
 }
+
+// The order code of a capture: its unit in half periods and whether its patterns have inverses.
+struct OrderCode {
+  int unit = 1;
+  bool inverses = true;
+};
 
 class PhaseFamily final : public PatternFamily {
  public:
@@ -56,7 +78,21 @@ class PhaseFamily final : public PatternFamily {
             {kPhasePeriod, 16, 4, 4096, "phase: period of the sinusoids, projector pixels"},
             {kPhaseRatio, 0, 2, 64,
              "phase: unwrap by sinusoids of periods P, P R, P R^2, ... (R); 0 = by a Gray code of half periods",
-             "Gray code of half periods"}};
+             "Gray code of half periods"},
+            {kPhaseCoarsest, 0, 0, 1,
+             "phase: 1 = the longer periods end at the first that spans the axis (0: one more, axis + the last)"},
+            {kPhaseOrigin, 0, 0, 359, "phase: phase of step 0 at projector coordinate 0, degrees"},
+            {kPhaseReversed, 0, 0, 1, "phase: 1 = step k shifts the sinusoid by +2 pi k / N rather than -2 pi k / N"},
+            {kOrderUnit, 1, 1, 2, "phase: the order code counts half periods (1) or whole periods (2)"},
+            {kOrderInverses, 1, 0, 1, "phase: 0 = the order code has no inverse patterns"}};
+  }
+
+  PhaseConvention convention(const ProtocolOptions& options) const {
+    return {family_parameter(*this, options, kPhaseOrigin), family_parameter(*this, options, kPhaseReversed) == 1};
+  }
+
+  OrderCode order_code(const ProtocolOptions& options) const {
+    return {family_parameter(*this, options, kOrderUnit), family_parameter(*this, options, kOrderInverses) == 1};
   }
 
   std::vector<Pattern> sequence(const ProtocolOptions& options) const override {
@@ -64,12 +100,14 @@ class PhaseFamily final : public PatternFamily {
     const int steps = family_parameter(*this, options, kPhaseSteps);
     const int period = family_parameter(*this, options, kPhasePeriod);
     const int ratio = family_parameter(*this, options, kPhaseRatio);
+    const OrderCode order = order_code(options);
     std::vector<Pattern> sequence(2);
     sequence[1].kind = pattern_kind::kBlack;
     for (const bool columns : {true, false}) {
       const int n = columns ? options.projector_size.width : options.projector_size.height;
-      for (int bit = 0; ratio == 0 && bit < phase_order_bits(n, period); ++bit) {
+      for (int bit = 0; ratio == 0 && bit < phase_order_bits(n, period, order.unit); ++bit) {
         for (const bool inverse : {false, true}) {
+          if (inverse && !order.inverses) continue;
           Pattern pattern;
           pattern.kind = columns ? pattern_kind::kOrderColumn : pattern_kind::kOrderRow;
           pattern.bit = bit;
@@ -78,7 +116,7 @@ class PhaseFamily final : public PatternFamily {
         }
       }
       // Coarsest period first: the order in which they unwrap.
-      for (int level = static_cast<int>(phase_periods(n, period, ratio).size()) - 1; level >= 0; --level) {
+      for (int level = static_cast<int>(phase_periods(options, columns).size()) - 1; level >= 0; --level) {
         for (int step = 0; step < steps; ++step) {
           Pattern pattern;
           pattern.kind = columns ? pattern_kind::kPhaseColumn : pattern_kind::kPhaseRow;
@@ -101,17 +139,20 @@ class PhaseFamily final : public PatternFamily {
     const int period = family_parameter(*this, options, kPhasePeriod);
     const bool columns = on_columns(pattern);
     const int n = columns ? size.width : size.height;
-    const int bits = phase_order_bits(n, period);
-    const int level_period = phase_periods(n, period, family_parameter(*this, options, kPhaseRatio)).at(pattern.level);
+    const OrderCode order = order_code(options);
+    const int bits = phase_order_bits(n, period, order.unit);
+    const int level_period = phase_periods(options, columns).at(pattern.level);
     for (int y = 0; y < size.height; ++y) {
       auto* row = image.ptr<unsigned char>(y);
       for (int x = 0; x < size.width; ++x) {
         const int coordinate = columns ? x : y;
         if (is_phase(pattern)) {
-          row[x] = static_cast<unsigned char>(
-              std::lround(255.0 * phase_pattern_level(coordinate, level_period, pattern.bit, steps)));
+          row[x] = static_cast<unsigned char>(std::lround(
+              255.0 * phase_pattern_level(coordinate, level_period, pattern.bit, steps, convention(options))));
         } else {
-          row[x] = gray_code_bit(phase_order(coordinate, period), pattern.bit, bits) != pattern.inverse ? 255 : 0;
+          row[x] = gray_code_bit(phase_order(coordinate, period, order.unit), pattern.bit, bits) != pattern.inverse
+                       ? 255
+                       : 0;
         }
       }
     }
@@ -150,7 +191,7 @@ class PhaseFamily final : public PatternFamily {
       pattern.level = entry.contains("level") ? entry_int(entry, "level", where) : 0;
     } else if (is_order(pattern)) {
       pattern.bit = entry_int(entry, "bit", where);
-      pattern.inverse = entry_bool(entry, "inverse", where);
+      pattern.inverse = entry.contains("inverse") && entry_bool(entry, "inverse", where);
     } else if (pattern.kind == pattern_kind::kDot) {
       read_dot_entry(entry, where, pattern);
     } else if (pattern.kind != pattern_kind::kWhite && pattern.kind != pattern_kind::kBlack) {
@@ -167,6 +208,7 @@ class PhaseFamily final : public PatternFamily {
     const int steps = family_parameter(*this, options, kPhaseSteps);
     const int period = family_parameter(*this, options, kPhasePeriod);
     const int ratio = family_parameter(*this, options, kPhaseRatio);
+    const OrderCode order = order_code(options);
     std::set<std::tuple<std::string, int, bool, int>> seen;
     for (std::size_t i = 0; i < manifest.frames.size(); ++i) {
       const Pattern& pattern = manifest.frames[i].pattern;
@@ -174,12 +216,15 @@ class PhaseFamily final : public PatternFamily {
       const std::string frame = "frames[" + std::to_string(i) + "] (" + excerpt(manifest.frames[i].file) + "): ";
       const int n = on_columns(pattern) ? manifest.projector_size.width : manifest.projector_size.height;
       if (is_order(pattern) && ratio != 0) fail(frame + "an order code frame, but phase_ratio unwraps by periods");
-      const int count = is_phase(pattern) ? steps : phase_order_bits(n, period);
+      if (is_order(pattern) && pattern.inverse && !order.inverses) {
+        fail(frame + "an inverse order pattern, but order_inverses is 0");
+      }
+      const int count = is_phase(pattern) ? steps : phase_order_bits(n, period, order.unit);
       if (pattern.bit < 0 || pattern.bit >= count) {
         fail(frame + (is_phase(pattern) ? "step " : "order bit ") + std::to_string(pattern.bit) + " outside 0 to " +
              std::to_string(count - 1));
       }
-      const int levels = static_cast<int>(phase_periods(n, period, ratio).size());
+      const int levels = static_cast<int>(phase_periods(options, on_columns(pattern)).size());
       if (pattern.level < 0 || pattern.level >= levels) {
         fail(frame + "level " + std::to_string(pattern.level) + " outside 0 to " + std::to_string(levels - 1));
       }

@@ -22,26 +22,50 @@ inline constexpr const char* kOrderRow = "order_row";
 }  // namespace pattern_kind
 
 // Parameters: phase_steps N (3 to 64, default 4), phase_period P in projector pixels (4 to 4096, default 16) and
-// phase_ratio R (0, the default: the order code unwraps; 2 to 64: the periods of phase_periods do).
+// phase_ratio R (0, the default: the order code unwraps; 2 to 64: the periods of phase_periods do). The conventions
+// of another tool's capture (docs/capture.md, "Reading another tool's phase capture"): phase_coarsest (0 or 1: the
+// ladder of periods ends as phase_periods says), phase_origin (degrees, 0 to
+// 359) and phase_reversed (0 or 1) place the sinusoids (phase_pattern_level); order_unit (1 or 2: the order code
+// counts half periods or whole periods) and order_inverses (1: each order pattern has its inverse; 0: none, each bit
+// is decided against the mean of white and black).
 inline constexpr const char* kPhaseSteps = "phase_steps";
 inline constexpr const char* kPhasePeriod = "phase_period";
 inline constexpr const char* kPhaseRatio = "phase_ratio";
+inline constexpr const char* kPhaseCoarsest = "phase_coarsest";
+inline constexpr const char* kPhaseOrigin = "phase_origin";
+inline constexpr const char* kPhaseReversed = "phase_reversed";
+inline constexpr const char* kOrderUnit = "order_unit";
+inline constexpr const char* kOrderInverses = "order_inverses";
 
 std::shared_ptr<const PatternFamily> phase_family();
 
-// Step k of N on an axis: 0.5 + 0.5 cos(2 pi x / P - 2 pi k / N) at projector coordinate x (pixel centres at
-// integers), before the 8-bit rounding.
-double phase_pattern_level(double x, int period, int step, int steps);
+// How a capture's sinusoids are placed: step k of N at projector coordinate x (pixel centres at integers) is
+// 0.5 + 0.5 cos(2 pi x / P + origin - s 2 pi k / N), s = -1 when reversed, else 1. Ours: origin 0, not reversed.
+struct PhaseConvention {
+  int origin_degrees = 0;
+  bool reversed = false;
+};
 
-// The half-period index floor(2 x / P) of projector pixel x, which the order code carries, and its bit count on an
-// axis of n pixels.
-int phase_order(int x, int period);
-int phase_order_bits(int n, int period);
+// The shift delta_k = s 2 pi k / N - origin (radians) of step k of N: the pattern is 0.5 + 0.5 cos(2 pi x / P -
+// delta_k).
+double phase_shift_radians(int step, int steps, PhaseConvention convention);
+
+// Step k of N on an axis at projector coordinate x, before the 8-bit rounding.
+double phase_pattern_level(double x, int period, int step, int steps, PhaseConvention convention = {});
+
+// The order index floor(2 x / (unit P)) of projector pixel x (unit 1: half periods; 2: whole periods), which the
+// order code carries, and its bit count on an axis of n pixels.
+int phase_order(int x, int period, int unit = 1);
+int phase_order_bits(int n, int period, int unit = 1);
 
 // The periods of an axis of n pixels, finest first: P alone for ratio 0; else P, P R, P R^2, ... up to the first
 // period p with p (R - 1) >= n, then a last one of n + p, which no pixel of the axis sees twice even p / 2 off. Each
 // period is at most R times the one before, so each level unwraps the next finer one while its error in projector
-// pixels stays under half that one's period.
-std::vector<int> phase_periods(int n, int period, int ratio);
+// pixels stays under half that one's period. `spanning_last` (another tool's ladder, phase_coarsest 1): P, P R, ...
+// up to the first period >= n, none after it; a pixel at the axis's ends may then read the coarsest phase a whole
+// period off, and is flagged out of range.
+std::vector<int> phase_periods(int n, int period, int ratio, bool spanning_last = false);
+// The periods of the columns (or rows) for options of the phase family.
+std::vector<int> phase_periods(const ProtocolOptions& options, bool columns);
 
 }  // namespace rfrecon::capture

@@ -18,11 +18,12 @@
 
 namespace rfrecon::transport {
 
-// TransportStep::op of the phase family: an order pair (frames pattern and inverse; args axis, bit from the most
-// significant), a phase step (frame; args axis, step index) and, after the steps of every period but the finest, the
-// fold of their sums into the axis's unwrapped estimate (no frame; args axis, level), and after all of those a dot
-// frame (args its offsets), which goes into T's rows at the projector pixel the phases found
-// (host/transport/dot_rows.h) while the correspondence stays the phases'. Axis 0: columns.
+// TransportStep::op of the phase family: an order pair (frames pattern and inverse, or the pattern alone when the
+// capture has no inverses: order_inverse_frame; args axis, bit from the most significant), a phase step (frame; args
+// axis, step index) and, after the steps of every period but the finest, the fold of their sums into the axis's
+// unwrapped estimate (no frame; args axis, level), and after all of those a dot frame (args its offsets), which goes
+// into T's rows at the projector pixel the phases found (host/transport/dot_rows.h) while the correspondence stays the
+// phases'. Axis 0: columns.
 enum PhaseStep : int { kOrderPairStep, kPhaseShiftStep, kPhaseFoldStep, kPhaseDotStep };
 
 // The periods of an axis (capture::phase_periods for the setup's projector and parameters), finest first.
@@ -31,8 +32,19 @@ std::vector<int> axis_periods(const TransportSetup& setup, int axis);
 // A parameter of the setup (capture::kPhaseSteps, kPhasePeriod), or the family's default where the setup has none.
 int phase_parameter(const TransportSetup& setup, const char* name);
 
-// (sin, cos) of step `step`'s phase shift 2 pi step / steps, rounded to float: what both accumulators multiply by.
-std::pair<float, float> phase_shift(int step, int steps);
+// (sin, cos) of step `step`'s phase shift (capture::phase_shift_radians with the setup's steps and conventions),
+// rounded to float: what both accumulators multiply by.
+std::pair<float, float> phase_shift(const TransportSetup& setup, int step);
+
+// The order code's stripe width in half periods (the finalize kernel's by_order): the setup's order_unit when the order
+// code unwraps, 0 when longer periods do.
+int order_unit(const TransportSetup& setup);
+
+// The frame an order pattern captured without its inverse is decided against: white + black - pattern, of the setup's
+// frame depth (raw samples rounded), so that pattern > it where the pattern is brighter than the mean of white and
+// black (linear). White and black linear CV_32F.
+cv::Mat order_inverse_frame(const TransportSetup& setup, const cv::Mat& pattern, const cv::Mat& white,
+                            const cv::Mat& black);
 
 // The bit mask of order bit `bit` (0 = most significant) of `axis` in its code word.
 std::uint32_t order_bit_mask(const TransportSetup& setup, int axis, int bit);

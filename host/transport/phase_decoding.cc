@@ -34,7 +34,7 @@ class PhaseAccumulator final : public TransportAccumulator {
   explicit PhaseAccumulator(const TransportSetup& setup)
       : t_(make_empty_transport(setup)),
         steps_(phase_parameter(setup, capture::kPhaseSteps)),
-        by_order_(phase_parameter(setup, capture::kPhaseRatio) == 0) {
+        order_unit_(order_unit(setup)) {
     for (int axis = 0; axis < 2; ++axis) {
       periods_[axis] = axis_periods(setup, axis);
       order_[axis].assign(t_.camera_pixels(), 0);
@@ -52,7 +52,8 @@ class PhaseAccumulator final : public TransportAccumulator {
     const int axis = step.args[0];
     if (step.op == kOrderPairStep) {
       const cv::Mat pattern = linear(frames.at(0));
-      const cv::Mat inverse = linear(frames.at(1));
+      const cv::Mat inverse =
+          linear(frames.size() > 1 ? frames[1] : order_inverse_frame(t_.setup, frames.at(0), white, black));
       const std::uint32_t mask = order_bit_mask(t_.setup, axis, step.args[1]);
       for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
         const float p = pattern.ptr<float>()[c], q = inverse.ptr<float>()[c];
@@ -60,7 +61,7 @@ class PhaseAccumulator final : public TransportAccumulator {
       }
     } else if (step.op == kPhaseShiftStep) {
       const cv::Mat frame = linear(frames.at(0));
-      const auto [sin_delta, cos_delta] = phase_shift(step.args[1], steps_);
+      const auto [sin_delta, cos_delta] = phase_shift(t_.setup, step.args[1]);
       for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
         sin_sum_[axis][c] += frame.ptr<float>()[c] * sin_delta;
         cos_sum_[axis][c] += frame.ptr<float>()[c] * cos_delta;
@@ -105,8 +106,9 @@ class PhaseAccumulator final : public TransportAccumulator {
         const Phase phase = phase_at(axis, c);
         contrasted = contrasted && low_contrast_[axis][c] == 0 && phase.modulation > t_.setup.thresholds.white;
         const int period = periods_[axis].front();
-        u[axis] = by_order_ ? unwrap_phase(phase.theta, static_cast<int>(gray_to_binary(order_[axis][c])), period)
-                            : unwrap_near(phase.theta, estimate_[axis][c], period);
+        u[axis] = order_unit_ > 0 ? unwrap_phase(phase.theta, static_cast<int>(gray_to_binary(order_[axis][c])), period,
+                                                 order_unit_)
+                                  : unwrap_near(phase.theta, estimate_[axis][c], period);
       }
       const long qx = std::lround(u[0]), qy = std::lround(u[1]);
       if (qx < 0 || qx >= projector.width || qy < 0 || qy >= projector.height) {
@@ -157,7 +159,7 @@ class PhaseAccumulator final : public TransportAccumulator {
 
   CompressedTransport t_;
   int steps_;
-  bool by_order_;
+  int order_unit_;  // the order code's stripe width in half periods; 0 when longer periods unwrap
   std::vector<int> periods_[2];
   std::vector<std::uint32_t> order_[2];
   std::vector<double> estimate_[2];
@@ -198,7 +200,13 @@ class PhaseDecoding final : public DecodingFamily {
     }
     for (const auto& [key, frame] : orders) {
       const auto [axis, bit, inverse] = key;
-      if (!inverse) steps.push_back({kOrderPairStep, {frame, orders.at({axis, bit, true})}, {axis, bit}, "decode"});
+      if (inverse) continue;
+      const auto pair = orders.find({axis, bit, true});
+      steps.push_back(
+          {kOrderPairStep,
+           pair == orders.end() ? std::vector<std::size_t>{frame} : std::vector<std::size_t>{frame, pair->second},
+           {axis, bit},
+           "decode"});
     }
     steps.insert(steps.end(), dots.begin(), dots.end());
     steps.emplace_back();
@@ -233,21 +241,44 @@ int phase_parameter(const TransportSetup& setup, const char* name) {
   return capture::family_parameter(capture::pattern_family("phase"), options, name);
 }
 
-std::pair<float, float> phase_shift(int step, int steps) {
-  const double delta = kTwoPi * step / steps;
+std::pair<float, float> phase_shift(const TransportSetup& setup, int step) {
+  const capture::PhaseConvention convention{phase_parameter(setup, capture::kPhaseOrigin),
+                                            phase_parameter(setup, capture::kPhaseReversed) == 1};
+  const double delta = capture::phase_shift_radians(step, phase_parameter(setup, capture::kPhaseSteps), convention);
   return {static_cast<float>(std::sin(delta)), static_cast<float>(std::cos(delta))};
 }
 
+int order_unit(const TransportSetup& setup) {
+  return phase_parameter(setup, capture::kPhaseRatio) == 0 ? phase_parameter(setup, capture::kOrderUnit) : 0;
+}
+
+cv::Mat order_inverse_frame(const TransportSetup& setup, const cv::Mat& pattern, const cv::Mat& white,
+                            const cv::Mat& black) {
+  cv::Mat inverse;
+  if (setup.frame_depth == CV_32F) {
+    inverse = white + black - pattern;
+  } else {
+    // Raw samples s, linear (s - b) k: white + black - pattern in raw units is 2 b + (white + black) / k - pattern,
+    // rounded (white and black came from whole raw samples, so only float rounding is undone).
+    cv::Mat raw_sum = (white + black) / setup.samples.scale + 2.0 * setup.samples.black;
+    cv::Mat pattern_float;
+    pattern.convertTo(pattern_float, CV_32F);
+    cv::Mat(raw_sum - pattern_float).convertTo(inverse, setup.frame_depth);
+  }
+  return inverse;
+}
+
 std::vector<int> axis_periods(const TransportSetup& setup, int axis) {
-  return capture::phase_periods(axis == 0 ? setup.projector_size.width : setup.projector_size.height,
-                                phase_parameter(setup, capture::kPhasePeriod),
-                                phase_parameter(setup, capture::kPhaseRatio));
+  capture::ProtocolOptions options;
+  options.projector_size = setup.projector_size;
+  options.family = "phase";
+  options.parameters = setup.parameters;
+  return capture::phase_periods(options, axis == 0);
 }
 
 std::uint32_t order_bit_mask(const TransportSetup& setup, int axis, int bit) {
-  const int period = phase_parameter(setup, capture::kPhasePeriod);
-  const int bits =
-      capture::phase_order_bits(axis == 0 ? setup.projector_size.width : setup.projector_size.height, period);
+  const int bits = capture::phase_order_bits(axis == 0 ? setup.projector_size.width : setup.projector_size.height,
+                                             phase_parameter(setup, capture::kPhasePeriod), order_unit(setup));
   return 1u << (bits - 1 - bit);
 }
 
@@ -271,9 +302,10 @@ double unwrap_near(double theta, double estimate, int period) {
   return std::round((estimate - wrapped) / period) * period + wrapped;
 }
 
-// Pixels x of half period h span [h P / 2, (h + 1) P / 2), so coordinates [h P / 2 - 0.5, (h + 1) P / 2 - 0.5).
-double unwrap_phase(double theta, int order, int period) {
-  return unwrap_near(theta, order * 0.5 * period + 0.25 * period - 0.5, period);
+// Pixels x of stripe h span [h w, (h + 1) w), w = unit P / 2, so coordinates [h w - 0.5, (h + 1) w - 0.5).
+double unwrap_phase(double theta, int order, int period, int unit) {
+  const double width = 0.5 * unit * period;
+  return unwrap_near(theta, order * width + 0.5 * width - 0.5, period);
 }
 
 std::shared_ptr<const DecodingFamily> phase_decoding() { return std::make_shared<const PhaseDecoding>(); }

@@ -1,8 +1,8 @@
 // The transport side of the built-in pattern family "phase": each axis's N phase steps, summed per pixel into the
 // sinusoid's phase and modulation, unwrapped to a sub-pixel projector coordinate by the order code (Gray code of the
-// half-period index, decided pattern against inverse) or by the phases of longer periods, coarsest first
-// (docs/method.md, "Phase shifting"). T holds that correspondence and one entry (white - black) at its projector pixel,
-// as Gray-code-only captures do.
+// half-period or period index, decided pattern against inverse or against the mean of white and black) or by the phases
+// of longer periods, coarsest first (docs/method.md, "Phase shifting"). T holds that correspondence and one entry
+// (white - black) at its projector pixel, as Gray-code-only captures do.
 #pragma once
 
 #include <memory>
@@ -20,8 +20,10 @@ std::shared_ptr<const DecodingFamily> phase_decoding();
 // phase's error in pixels.
 double unwrap_near(double theta, double estimate, int period);
 
-// unwrap_near from the half-period index `order` of the order code: the estimate is the middle of that half period,
-// so the order may be off by one at its edge and the phase off by less than a quarter period.
-double unwrap_phase(double theta, int order, int period);
+// unwrap_near from the index `order` of the order code's stripes, `unit` half periods wide: the estimate is the middle
+// of that stripe. With half periods (unit 1) the order may be off by one at its edge and the phase off by less than a
+// quarter period; with whole periods (unit 2) a stripe's edge is the phase's wrap, and an order off by one there
+// moves the pixel by a period.
+double unwrap_phase(double theta, int order, int period, int unit = 1);
 
 }  // namespace rfrecon::transport

@@ -27,7 +27,7 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
       : setup_(setup),
         device_(device),
         steps_(phase_parameter(setup, capture::kPhaseSteps)),
-        by_order_(phase_parameter(setup, capture::kPhaseRatio) == 0),
+        order_unit_(order_unit(setup)),
         periods_{axis_periods(setup, 0), axis_periods(setup, 1)},
         frames_(setup, device, entry, kBatch, transport_private_bytes(setup.entries_per_pixel)),
         state_(make_empty_transport(setup, std::move(storage))) {
@@ -70,14 +70,15 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
       if (steps_pending_ > 0 && axis != steps_axis_) add_steps();
       steps_axis_ = axis;
       frames_.add(steps_pending_, frames.at(0));
-      const auto [sin_delta, cos_delta] = phase_shift(step.args[1], steps_);
+      const auto [sin_delta, cos_delta] = phase_shift(setup_, step.args[1]);
       shifts_[2 * steps_pending_] = sin_delta;
       shifts_[2 * steps_pending_ + 1] = cos_delta;
       if (++steps_pending_ == kBatch) add_steps();
     } else if (step.op == kOrderPairStep) {
       if (steps_pending_ > 0) add_steps();  // the batch's frames are the phase steps' until they have run
       frames_.add(2 * pairs_pending_, frames.at(0));
-      frames_.add(2 * pairs_pending_ + 1, frames.at(1));
+      frames_.add(2 * pairs_pending_ + 1,
+                  frames.size() > 1 ? frames[1] : order_inverse_frame(setup_, frames.at(0), white, black));
       pairs_[2 * pairs_pending_] = order_bit_mask(setup_, axis, step.args[1]);
       pairs_[2 * pairs_pending_ + 1] = static_cast<cl_uint>(axis);
       if (++pairs_pending_ == kPairBatch) add_pairs();
@@ -124,7 +125,7 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
     if (pairs_pending_ > 0) add_pairs();
     frames_.set_white_black(white_, black_);
     cl::set_args(finalize_, frames_.white(), frames_.black(), setup_.thresholds.black, setup_.thresholds.white, steps_,
-                 periods_[0].front(), by_order_ ? 1 : 0, setup_.projector_size.width, setup_.projector_size.height,
+                 periods_[0].front(), order_unit_, setup_.projector_size.width, setup_.projector_size.height,
                  setup_.entries_per_pixel, code_x_, code_y_, sums_, estimates_, flags_, indices_, weights_, energy_,
                  correspondence_, frames_.count());
     frames_.run(finalize_, frames_.lanes_items());
@@ -181,7 +182,7 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
   TransportSetup setup_;
   cl::DeviceContext& device_;
   int steps_;
-  bool by_order_;
+  int order_unit_;  // the finalize kernel's by_order
   std::vector<int> periods_[2];
   DeviceFrames frames_;  // the batch of phase steps, of order pairs (pair p: frames 2p and 2p + 1) or of dot frames
   CompressedTransport state_;  // the kernels' state, shared with them (cl::share) until finish() returns it

@@ -8,8 +8,8 @@
 //   of n floats: S and C of the columns, then of the rows).
 //   phase_fold_*:        after the steps of one of an axis's longer periods: its phase unwrapped into the axis's
 //                        estimate, its sums cleared (NDRange: RF_LANES pixels per work-item).
-//   phase_finalize_*:    the finest period's phase and modulation, unwrapped near the order code's half period or
-//                        the estimate; flags, T's entry and the sub-pixel correspondence.
+//   phase_finalize_*:    the finest period's phase and modulation, unwrapped near the order code's stripe (by_order:
+//                        its width in half periods) or the estimate (by_order 0); flags, T's entry and the sub-pixel correspondence.
 #include "common/frame_batch.h"
 #include "common/target.h"
 #include "transport/phase_decode.h"

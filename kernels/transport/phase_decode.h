@@ -61,9 +61,10 @@ RF_INLINE float rf_unwrap_near(float theta, float estimate, int period) {
   return RF_ROUND((estimate - wrapped) / (float)period) * (float)period + wrapped;
 }
 
-// The estimate the order code gives: the middle of half period `order`.
-RF_INLINE float rf_order_middle(unsigned order, int period) {
-  return (float)order * 0.5f * (float)period + 0.25f * (float)period - 0.5f;
+// The estimate the order code gives: the middle of its stripe `order`, `unit` half periods wide (1 or 2).
+RF_INLINE float rf_order_middle(unsigned order, int period, int unit) {
+  const float width = 0.5f * (float)(unit * period);
+  return (float)order * width + 0.5f * width - 0.5f;
 }
 
 // The modulation 2 / N hypot(S, C) of N steps' sums: the sinusoid's amplitude in linear units.
@@ -90,12 +91,12 @@ RF_INLINE void rf_phase_fold_pixel(unsigned c, unsigned n, int axis, int period,
 }
 
 // Pixel c's flags and, where valid, its sub-pixel correspondence and T's one entry at its projector pixel (white -
-// black, row c * entries_per_pixel): the finest period's sums unwrapped near the order code's half period (by_order)
-// or near the estimates; shadow where white - black <= black_threshold, else out of range where the rounded position
-// lies outside the projector, else low contrast where a longer period was (the flag already set; not an order pair's)
-// or an axis's modulation is <= white_threshold, else valid. The projector pixel goes to code_x / code_y where valid
-// or low contrast (where the dot grid's rows are filled, as Gray code's undecided pixels are), 0 elsewhere. Every other
-// field is left as the empty transport has it.
+// black, row c * entries_per_pixel): the finest period's sums unwrapped near the middle of the order code's stripe
+// (by_order: the stripe's width in half periods, 1 or 2) or, by_order 0, near the estimates; shadow where white - black
+// <= black_threshold, else out of range where the rounded position lies outside the projector, else low contrast where
+// a longer period was (the flag already set; not an order pair's) or an axis's modulation is <= white_threshold, else
+// valid. The projector pixel goes to code_x / code_y where valid or low contrast (where the dot grid's rows are filled,
+// as Gray code's undecided pixels are), 0 elsewhere. Every other field is left as the empty transport has it.
 RF_INLINE void rf_phase_finalize_pixel(unsigned c, unsigned n, float white, float black, float black_threshold,
                                        float white_threshold, int steps, int period, int by_order, int projector_width,
                                        int projector_height, int entries_per_pixel, RF_GLOBAL unsigned* code_x,
@@ -104,8 +105,9 @@ RF_INLINE void rf_phase_finalize_pixel(unsigned c, unsigned n, float white, floa
                                        RF_GLOBAL int* indices, RF_GLOBAL float* weights, RF_GLOBAL float* energy,
                                        RF_GLOBAL float* correspondence) {
   const float lit = white - black;
-  const float estimate_x = by_order ? rf_order_middle(rf_gray_to_binary(code_x[c]), period) : estimates[c];
-  const float estimate_y = by_order ? rf_order_middle(rf_gray_to_binary(code_y[c]), period) : estimates[(size_t)n + c];
+  const float estimate_x = by_order ? rf_order_middle(rf_gray_to_binary(code_x[c]), period, by_order) : estimates[c];
+  const float estimate_y =
+      by_order ? rf_order_middle(rf_gray_to_binary(code_y[c]), period, by_order) : estimates[(size_t)n + c];
   const float sin_x = sums[c], cos_x = sums[(size_t)n + c];
   const float sin_y = sums[(size_t)2 * n + c], cos_y = sums[(size_t)3 * n + c];
   const float modulation_x = rf_phase_modulation(sin_x, cos_x, steps);

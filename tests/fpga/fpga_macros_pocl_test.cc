@@ -106,7 +106,8 @@ TEST_P(FpgaMacrosOnPocl, GrayPairsOverAFullAndAPartialBatchEqualReference) {
 TEST_P(FpgaMacrosOnPocl, PhaseSingleEqualsReference) {
   for (const transport::testing::PhaseParameters phase :
        {transport::testing::PhaseParameters{RF_FRAME_BATCH + 2, 6}, transport::testing::PhaseParameters{4, 4, 2},
-        transport::testing::PhaseParameters{4, 4, 0, 5}}) {
+        transport::testing::PhaseParameters{4, 4, 0, 5},
+        transport::testing::PhaseParameters{3, 4, 0, 0, 270, 1, 2, 0}}) {
     SCOPED_TRACE("ratio " + std::to_string(phase.ratio) + " dots " + std::to_string(phase.dot_spacing));
     const auto capture = transport::testing::tiny_phase_capture(phase);
     const auto linear = transport::testing::linearize(capture.frames);

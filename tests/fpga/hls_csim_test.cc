@@ -236,7 +236,7 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
  public:
   explicit HlsPhaseAccumulator(TransportSetup setup)
       : steps_(phase_parameter(setup, capture::kPhaseSteps)),
-        by_order_(phase_parameter(setup, capture::kPhaseRatio) == 0),
+        order_unit_(order_unit(setup)),
         periods_{axis_periods(setup, 0), axis_periods(setup, 1)} {
     setup.thresholds = resolve_thresholds(setup.thresholds, 8);
     t_ = make_empty_transport(setup);
@@ -255,7 +255,7 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
       if (steps_pending_ > 0 && axis != axis_) add_steps();
       axis_ = axis;
       std::copy_n(frames.at(0).ptr<float>(), n_, batch_.begin() + static_cast<std::ptrdiff_t>(steps_pending_ * n_));
-      std::tie(shifts_[2 * steps_pending_], shifts_[2 * steps_pending_ + 1]) = phase_shift(step.args[1], steps_);
+      std::tie(shifts_[2 * steps_pending_], shifts_[2 * steps_pending_ + 1]) = phase_shift(t_.setup, step.args[1]);
       if (++steps_pending_ == RF_FRAME_BATCH) add_steps();
     } else if (step.op == kPhaseFoldStep) {
       if (steps_pending_ > 0) add_steps();
@@ -274,7 +274,8 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
       if (steps_pending_ > 0) add_steps();
       const auto frame = batch_.begin() + static_cast<std::ptrdiff_t>(2 * pairs_pending_ * n_);
       std::copy_n(frames.at(0).ptr<float>(), n_, frame);
-      std::copy_n(frames.at(1).ptr<float>(), n_, frame + n_);
+      const cv::Mat inverse = frames.size() > 1 ? frames[1] : order_inverse_frame(t_.setup, frames.at(0), white, black);
+      std::copy_n(inverse.ptr<float>(), n_, frame + n_);
       pairs_[2 * pairs_pending_] = order_bit_mask(t_.setup, axis, step.args[1]);
       pairs_[2 * pairs_pending_ + 1] = static_cast<unsigned>(axis);
       if (++pairs_pending_ == RF_GRAY_PAIR_BATCH) add_pairs();
@@ -300,7 +301,7 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
     if (steps_pending_ > 0) add_steps();
     if (pairs_pending_ > 0) add_pairs();
     phase_finalize_single(white_.ptr<float>(), black_.ptr<float>(), t_.setup.thresholds.black,
-                          t_.setup.thresholds.white, steps_, periods_[0].front(), by_order_ ? 1 : 0,
+                          t_.setup.thresholds.white, steps_, periods_[0].front(), order_unit_,
                           t_.setup.projector_size.width, t_.setup.projector_size.height, t_.k(), t_.gray_x.data(),
                           t_.gray_y.data(), sums_.data(), estimates_.data(), t_.flags.data(), t_.indices.data(),
                           t_.weights.data(), t_.direct_energy.data(), t_.correspondence.data(), n_);
@@ -333,7 +334,7 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
   }
 
   int steps_;
-  bool by_order_;
+  int order_unit_;
   std::vector<int> periods_[2];
   CompressedTransport t_;
   unsigned n_ = 0;
@@ -357,7 +358,8 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
 TEST(HlsCsim, PhaseTopsMatchReference) {
   for (const testing::PhaseParameters phase :
        {testing::PhaseParameters{5, 4}, testing::PhaseParameters{RF_FRAME_BATCH + 2, 6},
-        testing::PhaseParameters{4, 4, 2}, testing::PhaseParameters{4, 4, 0, 5}}) {
+        testing::PhaseParameters{4, 4, 2}, testing::PhaseParameters{4, 4, 0, 5},
+        testing::PhaseParameters{3, 4, 0, 0, 270, 1, 2, 0}}) {
     SCOPED_TRACE("steps " + std::to_string(phase.steps) + " ratio " + std::to_string(phase.ratio) + " dots " +
                  std::to_string(phase.dot_spacing));
     const auto capture = testing::tiny_phase_capture(phase);

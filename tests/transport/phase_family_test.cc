@@ -69,6 +69,9 @@ TEST(PhaseUnwrapTest, LongerPeriodsUnwrapTheFinestFromTheCoarsestEstimate) {
     }
   }
   EXPECT_EQ(capture::phase_periods(640, 16, 0), std::vector<int>{16});
+  // Another tool's ladder ends at the first period that spans the axis: fringe counts 64, 8, 1 of 1280 pixels.
+  EXPECT_EQ(capture::phase_periods(1280, 20, 8, true), (std::vector<int>{20, 160, 1280}));
+  EXPECT_EQ(capture::phase_periods(1000, 20, 8, true), (std::vector<int>{20, 160, 1280}));
 }
 
 TEST(PhaseFamilyTest, PatternsCommandWritesTheSequenceWithItsParameters) {
@@ -206,6 +209,86 @@ TEST(PhaseFamilyTest, SubPixelInFocusAndBeatsGrayCodeUnderDefocus) {
         EXPECT_LT(phase.rms_px, 0.5 * gray.rms_px) << families[f];
       }
     }
+  }
+}
+
+// Another tool's capture, described by its manifest: sines rather than cosines shifting the other way (origin 270
+// degrees, reversed: 0.5 + 0.5 sin(2 pi x / P + 2 pi k / N), as many tools write them), an order code of whole
+// periods without inverses, files of its own names in its own order. Decoded with those conventions it is as precise
+// as ours on the same pixels, which is the proof they are used: the same frames read with our conventions are not.
+TEST(PhaseFamilyTest, AnotherToolsCaptureIsReadFromItsManifest) {
+  testing::TempDir dir("phase_foreign");
+  const std::string scene = " --scene plane-lambert --dot-spacing 0 --camera 160x128 --projector 128x80";
+  const fs::path ours = dir.path() / "ours", theirs = dir.path() / "theirs";
+  ASSERT_EQ(testing::run_cli("-q simulate" + scene + " --family phase -o " + ours.string()).exit_code, 0);
+  ASSERT_EQ(testing::run_cli("-q simulate" + scene +
+                             " --family phase --phase-origin 270 --phase-reversed 1 --order-unit 2 "
+                             "--order-inverses 0 -o " +
+                             theirs.string())
+                .exit_code,
+            0);
+  const fs::path capture = theirs / "capture";
+  nlohmann::json manifest;
+  std::ifstream(capture / "manifest.json") >> manifest;
+  // Columns: ceil(log2(ceil(128 / 16))) = 3 order bits of whole periods, no inverses; rows ceil(log2(5)) = 3.
+  std::size_t order_frames = 0;
+  for (const auto& frame : manifest.at("frames")) {
+    order_frames += frame.at("pattern").get<std::string>().rfind("order_", 0) == 0 ? 1 : 0;
+  }
+  EXPECT_EQ(order_frames, 6U);
+  nlohmann::json frames = nlohmann::json::array();
+  for (std::size_t i = manifest.at("frames").size(); i-- > 0;) {
+    nlohmann::json frame = manifest.at("frames").at(i);
+    const std::string renamed = "img_" + std::to_string(frames.size()) + ".png";
+    fs::rename(capture / frame.at("file").get<std::string>(), capture / renamed);
+    frame["file"] = renamed;
+    frame.erase("inverse");
+    frames.push_back(frame);
+  }
+  manifest["frames"] = frames;
+  std::ofstream(capture / "manifest.json") << manifest.dump(2);
+  const auto patterns = testing::run_cli(
+      "-q patterns --family phase --phase-origin 270 --phase-reversed 1 "
+      "--projector 64x40 -o " +
+      (dir.path() / "patterns").string());
+  ASSERT_EQ(patterns.exit_code, 0) << patterns.output;
+  nlohmann::json projected;
+  std::ifstream(dir.path() / "patterns" / "manifest.json") >> projected;
+  for (const auto& frame : projected.at("frames")) {
+    if (frame.at("pattern") != "phase_col" || frame.at("step") != 1) continue;
+    const cv::Mat image =
+        cv::imread((dir.path() / "patterns" / frame.at("file").get<std::string>()).string(), cv::IMREAD_GRAYSCALE);
+    for (int x = 0; x < image.cols; ++x) {  // step 1 of 4: 0.5 + 0.5 sin(2 pi x / 16 + pi / 2)
+      EXPECT_NEAR(image.at<unsigned char>(0, x), 127.5 + 127.5 * std::sin(2.0 * kPi * x / 16.0 + 0.5 * kPi), 0.501);
+    }
+  }
+
+  for (const fs::path& out : {ours, theirs}) {
+    const auto decoded =
+        testing::run_cli("-q transport " + (out / "capture").string() + " -o " + (out / "T.h5").string());
+    ASSERT_EQ(decoded.exit_code, 0) << decoded.output;
+  }
+  std::size_t outliers = 0;
+  const auto [our_errors, their_errors] = same_pixel_errors(ours / "T.h5", theirs / "T.h5", ours / "truth", outliers);
+  std::printf("another tool's conventions: %zu pixels, column RMS ours %.4f px, theirs %.4f px, %zu over 2 px\n",
+              our_errors.pixels, our_errors.rms_px, their_errors.rms_px, outliers);
+  EXPECT_GT(our_errors.pixels, 160U * 128U / 3);
+  EXPECT_LT(their_errors.rms_px, 0.1);
+  EXPECT_LT(outliers, our_errors.pixels / 100) << "whole-period order codes miss at a few stripe edges at most";
+
+  // The same frames with the conventions taken out of the manifest decode wrong (or not at all).
+  for (const char* convention : {"phase_origin", "phase_reversed"}) {
+    nlohmann::json stripped = manifest;
+    stripped["parameters"].erase(convention);
+    std::ofstream(capture / "manifest.json") << stripped.dump(2);
+    const fs::path wrong = dir.path() / (std::string("without_") + convention + ".h5");
+    const auto decoded = testing::run_cli("-q transport " + capture.string() + " -o " + wrong.string());
+    ASSERT_EQ(decoded.exit_code, 0) << decoded.output;
+    const auto [ours_again, misread] = same_pixel_errors(ours / "T.h5", wrong, ours / "truth", outliers);
+    std::printf("without %s: %zu pixels, column RMS %.4f px, %zu over 2 px\n", convention, ours_again.pixels,
+                misread.rms_px, outliers);
+    EXPECT_GT(misread.rms_px + static_cast<double>(outliers) / std::max<std::size_t>(ours_again.pixels, 1), 0.2)
+        << "without " << convention;
   }
 }
 

@@ -31,8 +31,14 @@ TinyCapture tiny_capture_of(cv::Size projector_size, int dot_spacing) {
 TinyCapture tiny_capture(int dot_spacing) { return tiny_capture_of({16, 12}, dot_spacing); }
 
 std::map<std::string, int> phase_parameters(PhaseParameters phase) {
-  return {
-      {capture::kPhaseSteps, phase.steps}, {capture::kPhasePeriod, phase.period}, {capture::kPhaseRatio, phase.ratio}};
+  return {{capture::kPhaseSteps, phase.steps},
+          {capture::kPhasePeriod, phase.period},
+          {capture::kPhaseRatio, phase.ratio},
+          {capture::kPhaseOrigin, phase.origin_degrees},
+          {capture::kPhaseReversed, phase.reversed},
+          {capture::kOrderUnit, phase.order_unit},
+          {capture::kOrderInverses, phase.order_inverses},
+          {capture::kPhaseCoarsest, phase.coarsest}};
 }
 
 TinyCapture tiny_phase_capture(PhaseParameters phase) {

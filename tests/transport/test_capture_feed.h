@@ -33,6 +33,12 @@ struct PhaseParameters {
   int period;
   int ratio = 0;        // 0: unwrapped by the order code
   int dot_spacing = 0;  // the dot grid after the phases, or none
+  // Another tool's conventions (capture::kPhaseOrigin, kPhaseReversed, kOrderUnit, kOrderInverses, kPhaseCoarsest).
+  int origin_degrees = 0;
+  int reversed = 0;
+  int order_unit = 1;
+  int order_inverses = 1;
+  int coarsest = 0;
 };
 
 // The tiny capture through the phase family's sequence on a 16 x 12 projector.
