@@ -21,13 +21,17 @@ namespace rfrecon::transport {
 // TransportStep::op of the phase family: an order pair (frames pattern and inverse, or the pattern alone when the
 // capture has no inverses: order_inverse_frame; args axis, bit from the most significant), a phase step (frame; args
 // axis, step index) and, after the steps of every period but the finest, the fold of their sums into the axis's
-// unwrapped estimate (no frame; args axis, level), and after all of those a dot frame (args its offsets), which goes
+// unwrapped estimate, or with beats into the level's phase kept for heterodyne_estimate (no frame; args axis, level),
+// and after all of those a dot frame (args its offsets), which goes
 // into T's rows at the projector pixel the phases found (host/transport/dot_rows.h) while the correspondence stays the
 // phases'. Axis 0: columns.
 enum PhaseStep : int { kOrderPairStep, kPhaseShiftStep, kPhaseFoldStep, kPhaseDotStep };
 
 // The periods of an axis (capture::phase_periods for the setup's projector and parameters), finest first.
-std::vector<int> axis_periods(const TransportSetup& setup, int axis);
+std::vector<double> axis_periods(const TransportSetup& setup, int axis);
+
+// The heterodyne fringe counts of the setup, finest first (capture::phase_heterodyne_fringes); empty without beats.
+std::vector<int> heterodyne_fringes(const TransportSetup& setup);
 
 // A parameter of the setup (capture::kPhaseSteps, kPhasePeriod), or the family's default where the setup has none.
 int phase_parameter(const TransportSetup& setup, const char* name);
@@ -37,7 +41,7 @@ int phase_parameter(const TransportSetup& setup, const char* name);
 std::pair<float, float> phase_shift(const TransportSetup& setup, int step);
 
 // The order code's stripe width in half periods (the finalize kernel's by_order): the setup's order_unit when the order
-// code unwraps, 0 when longer periods do.
+// code unwraps, 0 when longer periods or beats do.
 int order_unit(const TransportSetup& setup);
 
 // The frame an order pattern captured without its inverse is decided against: white + black - pattern, of the setup's

@@ -26,19 +26,21 @@ bool on_columns(const capture::Pattern& pattern) {
   return pattern.kind == capture::pattern_kind::kOrderColumn || pattern.kind == capture::pattern_kind::kPhaseColumn;
 }
 
-// Per camera pixel and axis: the order code's bits or the estimate unwrapped from the longer periods, whether every
-// longer period was contrasted (an order bit's contrast is not asked: docs/method.md), and the phase sums of the
-// period being added.
+// Per camera pixel and axis: the order code's bits, the estimate unwrapped from the longer periods or the coarser
+// heterodyne levels' phases, whether every coarser level was contrasted (an order bit's contrast is not asked:
+// docs/method.md), and the phase sums of the period being added.
 class PhaseAccumulator final : public TransportAccumulator {
  public:
   explicit PhaseAccumulator(const TransportSetup& setup)
       : t_(make_empty_transport(setup)),
         steps_(phase_parameter(setup, capture::kPhaseSteps)),
-        order_unit_(order_unit(setup)) {
+        order_unit_(order_unit(setup)),
+        fringes_(heterodyne_fringes(setup)) {
     for (int axis = 0; axis < 2; ++axis) {
       periods_[axis] = axis_periods(setup, axis);
       order_[axis].assign(t_.camera_pixels(), 0);
       estimate_[axis].assign(t_.camera_pixels(), 0.0);
+      turns_[axis].assign(2 * t_.camera_pixels(), 0.0);
       sin_sum_[axis].assign(t_.camera_pixels(), 0.0f);
       cos_sum_[axis].assign(t_.camera_pixels(), 0.0f);
       low_contrast_[axis].assign(t_.camera_pixels(), 0);
@@ -105,7 +107,11 @@ class PhaseAccumulator final : public TransportAccumulator {
       for (int axis = 0; axis < 2; ++axis) {
         const Phase phase = phase_at(axis, c);
         contrasted = contrasted && low_contrast_[axis][c] == 0 && phase.modulation > t_.setup.thresholds.white;
-        const int period = periods_[axis].front();
+        const double period = periods_[axis].front();
+        if (!fringes_.empty()) {
+          const double turns[3] = {turns_of(phase.theta), turns_[axis][2 * c], turns_[axis][2 * c + 1]};
+          estimate_[axis][c] = heterodyne_estimate(turns, fringes_, axis == 0 ? projector.width : projector.height);
+        }
         u[axis] = order_unit_ > 0 ? unwrap_phase(phase.theta, static_cast<int>(gray_to_binary(order_[axis][c])), period,
                                                  order_unit_)
                                   : unwrap_near(phase.theta, estimate_[axis][c], period);
@@ -140,17 +146,26 @@ class PhaseAccumulator final : public TransportAccumulator {
   }
 
   // The sums of period `level` unwrapped near the estimate of the next coarser one (the axis's middle for the
-  // coarsest), then cleared for the next finer period.
+  // coarsest), or with beats kept as turns, then cleared for the next finer period.
   void fold(int axis, int level) {
     const int n = axis == 0 ? t_.setup.projector_size.width : t_.setup.projector_size.height;
     const bool coarsest = level + 1 == static_cast<int>(periods_[axis].size());
     for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
       const Phase phase = phase_at(axis, c);
       if (!(phase.modulation > t_.setup.thresholds.white)) low_contrast_[axis][c] = 1;
-      const double estimate = coarsest ? 0.5 * (n - 1) : estimate_[axis][c];
-      estimate_[axis][c] = unwrap_near(phase.theta, estimate, periods_[axis].at(level));
+      if (!fringes_.empty()) {
+        turns_[axis][2 * c + static_cast<std::size_t>(level - 1)] = turns_of(phase.theta);
+      } else {
+        const double estimate = coarsest ? 0.5 * (n - 1) : estimate_[axis][c];
+        estimate_[axis][c] = unwrap_near(phase.theta, estimate, periods_[axis].at(level));
+      }
       sin_sum_[axis][c] = cos_sum_[axis][c] = 0.0f;
     }
+  }
+
+  static double turns_of(double theta) {
+    const double turns = theta / kTwoPi;
+    return turns - std::floor(turns);
   }
 
   cv::Mat linear(const cv::Mat& frame) const {
@@ -159,10 +174,12 @@ class PhaseAccumulator final : public TransportAccumulator {
 
   CompressedTransport t_;
   int steps_;
-  int order_unit_;  // the order code's stripe width in half periods; 0 when longer periods unwrap
-  std::vector<int> periods_[2];
+  int order_unit_;            // the order code's stripe width in half periods; 0 when longer periods or beats unwrap
+  std::vector<int> fringes_;  // the heterodyne fringe counts, finest first; empty without beats
+  std::vector<double> periods_[2];
   std::vector<std::uint32_t> order_[2];
   std::vector<double> estimate_[2];
+  std::vector<double> turns_[2];  // with beats: levels 1 and 2's phases in turns, two per pixel
   std::vector<float> sin_sum_[2];
   std::vector<float> cos_sum_[2];
   std::vector<std::uint8_t> low_contrast_[2];
@@ -249,7 +266,9 @@ std::pair<float, float> phase_shift(const TransportSetup& setup, int step) {
 }
 
 int order_unit(const TransportSetup& setup) {
-  return phase_parameter(setup, capture::kPhaseRatio) == 0 ? phase_parameter(setup, capture::kOrderUnit) : 0;
+  const bool by_order =
+      phase_parameter(setup, capture::kPhaseRatio) == 0 && phase_parameter(setup, capture::kPhaseHeterodyne) == 0;
+  return by_order ? phase_parameter(setup, capture::kOrderUnit) : 0;
 }
 
 cv::Mat order_inverse_frame(const TransportSetup& setup, const cv::Mat& pattern, const cv::Mat& white,
@@ -268,7 +287,12 @@ cv::Mat order_inverse_frame(const TransportSetup& setup, const cv::Mat& pattern,
   return inverse;
 }
 
-std::vector<int> axis_periods(const TransportSetup& setup, int axis) {
+std::vector<int> heterodyne_fringes(const TransportSetup& setup) {
+  return capture::phase_heterodyne_fringes(phase_parameter(setup, capture::kPhaseFringes),
+                                           phase_parameter(setup, capture::kPhaseHeterodyne));
+}
+
+std::vector<double> axis_periods(const TransportSetup& setup, int axis) {
   capture::ProtocolOptions options;
   options.projector_size = setup.projector_size;
   options.family = "phase";
@@ -296,16 +320,24 @@ std::vector<cl::ProgramRequest> phase_programs(const TransportSetup& setup, Kern
   return requests;
 }
 
-double unwrap_near(double theta, double estimate, int period) {
+double unwrap_near(double theta, double estimate, double period) {
   double wrapped = theta / kTwoPi * period;  // in (-P/2, P/2]
   if (wrapped < 0.0) wrapped += period;
   return std::round((estimate - wrapped) / period) * period + wrapped;
 }
 
 // Pixels x of stripe h span [h w, (h + 1) w), w = unit P / 2, so coordinates [h w - 0.5, (h + 1) w - 0.5).
-double unwrap_phase(double theta, int order, int period, int unit) {
+double unwrap_phase(double theta, int order, double period, int unit) {
   const double width = 0.5 * unit * period;
   return unwrap_near(theta, order * width + 0.5 * width - 0.5, period);
+}
+
+double heterodyne_estimate(const double* turns, const std::vector<int>& fringes, double axis_pixels) {
+  const auto fraction = [](double v) { return v - std::floor(v); };
+  const double beat = fraction(turns[0] - turns[1]);
+  if (fringes.size() == 2) return beat * axis_pixels;
+  const double beat_of_beats = fraction(beat - fraction(turns[1] - turns[2]));
+  return unwrap_near(kTwoPi * beat, beat_of_beats * axis_pixels, axis_pixels / (fringes[0] - fringes[1]));
 }
 
 std::shared_ptr<const DecodingFamily> phase_decoding() { return std::make_shared<const PhaseDecoding>(); }

@@ -28,6 +28,7 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
         device_(device),
         steps_(phase_parameter(setup, capture::kPhaseSteps)),
         order_unit_(order_unit(setup)),
+        fringes_(heterodyne_fringes(setup)),
         periods_{axis_periods(setup, 0), axis_periods(setup, 1)},
         frames_(setup, device, entry, kBatch, transport_private_bytes(setup.entries_per_pixel)),
         state_(make_empty_transport(setup, std::move(storage))) {
@@ -37,7 +38,7 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
     const ::cl::Program phase = programs.get(device, requests[1].kernel_path, requests[1].options);
     order_pairs_ = cl::make_kernel(decode, "gray_pairs", entry);
     phase_steps_ = cl::make_kernel(phase, "phase_steps", entry);
-    fold_ = cl::make_kernel(phase, "phase_fold", entry);
+    fold_ = cl::make_kernel(phase, fringes_.empty() ? "phase_fold" : "phase_beat", entry);
     finalize_ = cl::make_kernel(phase, "phase_finalize", entry);
     if (setup.dot_spacing > 0) {
       const ::cl::Program compress = programs.get(device, requests[2].kernel_path, requests[2].options);
@@ -50,7 +51,9 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
     shifts_buffer_ = cl::make_buffer<float>(context, shifts_.size());
     const std::vector<float> zeros(4 * state_.camera_pixels(), 0.0f);
     sums_ = cl::upload(context, zeros.data(), zeros.size(), CL_MEM_READ_WRITE);
-    estimates_ = cl::upload(context, zeros.data(), zeros.size() / 2, CL_MEM_READ_WRITE);
+    // One estimate per axis, or with beats two slots of phases per axis (phase_beat).
+    estimates_ =
+        cl::upload(context, zeros.data(), fringes_.empty() ? zeros.size() / 2 : zeros.size(), CL_MEM_READ_WRITE);
     // T's arrays, the order codes in gray_x / gray_y until phase_finalize writes the projector pixels there.
     code_x_ = cl::share(context, state_.gray_x);
     code_y_ = cl::share(context, state_.gray_y);
@@ -123,11 +126,14 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
     resolved_ = true;
     if (steps_pending_ > 0) add_steps();
     if (pairs_pending_ > 0) add_pairs();
+    if (!fringes_.empty()) {
+      for (int axis = 0; axis < 2; ++axis) fold(axis, 0);  // the finest level's beats into the estimates
+    }
     frames_.set_white_black(white_, black_);
     cl::set_args(finalize_, frames_.white(), frames_.black(), setup_.thresholds.black, setup_.thresholds.white, steps_,
-                 periods_[0].front(), order_unit_, setup_.projector_size.width, setup_.projector_size.height,
-                 setup_.entries_per_pixel, code_x_, code_y_, sums_, estimates_, flags_, indices_, weights_, energy_,
-                 correspondence_, frames_.count());
+                 static_cast<float>(periods_[0].front()), static_cast<float>(periods_[1].front()), order_unit_,
+                 setup_.projector_size.width, setup_.projector_size.height, setup_.entries_per_pixel, code_x_, code_y_,
+                 sums_, estimates_, flags_, indices_, weights_, energy_, correspondence_, frames_.count());
     frames_.run(finalize_, frames_.lanes_items());
     if (setup_.dot_spacing == 0) return;
     ::cl::CommandQueue& queue = device_.queue();
@@ -156,12 +162,19 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
     shifts_.fill(0.0f);
   }
 
-  // The sums of period `level` of the axis folded into its estimate (phase_fold).
+  // The sums of period `level` of the axis folded into its estimate (phase_fold), or with beats kept as the level's
+  // phase, the finest level (0) made into the estimate (phase_beat).
   void fold(int axis, int level) {
     const int n = axis == 0 ? setup_.projector_size.width : setup_.projector_size.height;
-    const bool coarsest = level + 1 == static_cast<int>(periods_[axis].size());
-    cl::set_args(fold_, static_cast<cl_int>(axis), periods_[axis].at(level), coarsest ? 1 : 0, 0.5f * (n - 1), steps_,
-                 setup_.thresholds.white, sums_, estimates_, flags_, frames_.count());
+    if (fringes_.empty()) {
+      const bool coarsest = level + 1 == static_cast<int>(periods_[axis].size());
+      cl::set_args(fold_, static_cast<cl_int>(axis), static_cast<float>(periods_[axis].at(level)), coarsest ? 1 : 0,
+                   0.5f * (n - 1), steps_, setup_.thresholds.white, sums_, estimates_, flags_, frames_.count());
+    } else {
+      cl::set_args(fold_, static_cast<cl_int>(axis), static_cast<cl_int>(level), fringes_[0], fringes_[1],
+                   fringes_.size() > 2 ? fringes_[2] : 0, static_cast<float>(n), steps_, setup_.thresholds.white, sums_,
+                   estimates_, flags_, frames_.count());
+    }
     frames_.run(fold_, frames_.lanes_items());
   }
 
@@ -182,8 +195,9 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
   TransportSetup setup_;
   cl::DeviceContext& device_;
   int steps_;
-  int order_unit_;  // the finalize kernel's by_order
-  std::vector<int> periods_[2];
+  int order_unit_;            // the finalize kernel's by_order
+  std::vector<int> fringes_;  // the heterodyne fringe counts, finest first; empty without beats
+  std::vector<double> periods_[2];
   DeviceFrames frames_;  // the batch of phase steps, of order pairs (pair p: frames 2p and 2p + 1) or of dot frames
   CompressedTransport state_;  // the kernels' state, shared with them (cl::share) until finish() returns it
   cv::Mat white_, black_;

@@ -1,6 +1,6 @@
 // HLS C++ tops of the phase-shifting decoding (Vitis 2023.1 and later): the bodies of phase_steps_single,
-// phase_fold_single and phase_finalize_single (kernels/transport/phase_decode.h) behind AXI4 masters for the buffers,
-// AXI4-Lite for the rest. The order codes go through gray_pairs_single (decode_tops.cpp).
+// phase_fold_single, phase_beat_single and phase_finalize_single (kernels/transport/phase_decode.h) behind AXI4 masters
+// for the buffers, AXI4-Lite for the rest. The order codes go through gray_pairs_single (decode_tops.cpp).
 #define RF_TARGET_HLS  // kernels/common/target.h: emit the HLS loop directives
 
 #include "hls/transport_tops.h"
@@ -15,7 +15,7 @@ extern "C" void phase_steps_single(const float* frames, int axis, int step_count
   rf_phase_steps_pixels(n, axis, step_count, shifts, frames, sums);
 }
 
-extern "C" void phase_fold_single(int axis, int period, int coarsest, float middle, int steps, float white_threshold,
+extern "C" void phase_fold_single(int axis, float period, int coarsest, float middle, int steps, float white_threshold,
                                   float* sums, float* estimates, unsigned char* flags, unsigned n) {
 #pragma HLS INTERFACE mode = m_axi port = sums offset = slave bundle = gmem0
 #pragma HLS INTERFACE mode = m_axi port = estimates offset = slave bundle = gmem1
@@ -24,11 +24,22 @@ extern "C" void phase_fold_single(int axis, int period, int coarsest, float midd
   rf_phase_fold_pixels(n, axis, period, coarsest, middle, steps, white_threshold, sums, estimates, flags);
 }
 
+extern "C" void phase_beat_single(int axis, int level, int f0, int f1, int f2, float axis_pixels, int steps,
+                                  float white_threshold, float* sums, float* estimates, unsigned char* flags,
+                                  unsigned n) {
+#pragma HLS INTERFACE mode = m_axi port = sums offset = slave bundle = gmem0
+#pragma HLS INTERFACE mode = m_axi port = estimates offset = slave bundle = gmem1
+#pragma HLS INTERFACE mode = m_axi port = flags offset = slave bundle = gmem2
+#pragma HLS INTERFACE mode = s_axilite port = return
+  rf_phase_beat_pixels(n, axis, level, f0, f1, f2, axis_pixels, steps, white_threshold, sums, estimates, flags);
+}
+
 extern "C" void phase_finalize_single(const float* white, const float* black, float black_threshold,
-                                      float white_threshold, int steps, int period, int by_order, int projector_width,
-                                      int projector_height, int entries_per_pixel, unsigned* code_x, unsigned* code_y,
-                                      const float* sums, const float* estimates, unsigned char* flags, int* indices,
-                                      float* weights, float* energy, float* correspondence, unsigned n) {
+                                      float white_threshold, int steps, float period_x, float period_y, int by_order,
+                                      int projector_width, int projector_height, int entries_per_pixel,
+                                      unsigned* code_x, unsigned* code_y, const float* sums, const float* estimates,
+                                      unsigned char* flags, int* indices, float* weights, float* energy,
+                                      float* correspondence, unsigned n) {
 #pragma HLS INTERFACE mode = m_axi port = white offset = slave bundle = gmem0
 #pragma HLS INTERFACE mode = m_axi port = black offset = slave bundle = gmem1
 #pragma HLS INTERFACE mode = m_axi port = code_x offset = slave bundle = gmem2
@@ -41,7 +52,7 @@ extern "C" void phase_finalize_single(const float* white, const float* black, fl
 #pragma HLS INTERFACE mode = m_axi port = energy offset = slave bundle = gmem9
 #pragma HLS INTERFACE mode = m_axi port = correspondence offset = slave bundle = gmem10
 #pragma HLS INTERFACE mode = s_axilite port = return
-  rf_phase_finalize_pixels(n, white, black, black_threshold, white_threshold, steps, period, by_order, projector_width,
-                           projector_height, entries_per_pixel, code_x, code_y, sums, estimates, flags, indices,
-                           weights, energy, correspondence);
+  rf_phase_finalize_pixels(n, white, black, black_threshold, white_threshold, steps, period_x, period_y, by_order,
+                           projector_width, projector_height, entries_per_pixel, code_x, code_y, sums, estimates, flags,
+                           indices, weights, energy, correspondence);
 }

@@ -13,13 +13,15 @@ void gray_finalize_single(const float* white, const float* black, float black_th
                           int projector_height, unsigned* code_x, unsigned* code_y, unsigned char* flags, unsigned n);
 
 void phase_steps_single(const float* frames, int axis, int step_count, const float* shifts, float* sums, unsigned n);
-void phase_fold_single(int axis, int period, int coarsest, float middle, int steps, float white_threshold, float* sums,
-                       float* estimates, unsigned char* flags, unsigned n);
+void phase_fold_single(int axis, float period, int coarsest, float middle, int steps, float white_threshold,
+                       float* sums, float* estimates, unsigned char* flags, unsigned n);
+void phase_beat_single(int axis, int level, int f0, int f1, int f2, float axis_pixels, int steps, float white_threshold,
+                       float* sums, float* estimates, unsigned char* flags, unsigned n);
 void phase_finalize_single(const float* white, const float* black, float black_threshold, float white_threshold,
-                           int steps, int period, int by_order, int projector_width, int projector_height,
-                           int entries_per_pixel, unsigned* code_x, unsigned* code_y, const float* sums,
-                           const float* estimates, unsigned char* flags, int* indices, float* weights, float* energy,
-                           float* correspondence, unsigned n);
+                           int steps, float period_x, float period_y, int by_order, int projector_width,
+                           int projector_height, int entries_per_pixel, unsigned* code_x, unsigned* code_y,
+                           const float* sums, const float* estimates, unsigned char* flags, int* indices,
+                           float* weights, float* energy, float* correspondence, unsigned n);
 
 void dot_frames_single(const float* frames, int frame_count, const int* offsets, int spacing, int projector_width,
                        int projector_height, float noise_threshold, const float* black, const unsigned char* flags,

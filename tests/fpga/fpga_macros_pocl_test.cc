@@ -102,12 +102,12 @@ TEST_P(FpgaMacrosOnPocl, GrayPairsOverAFullAndAPartialBatchEqualReference) {
 }
 
 // The phase steps over a full and a partial batch of RF_FRAME_BATCH, the order pairs and the finalizing; the folds of
-// longer periods (ratio 2); a dot grid of 25 frames after the phases.
+// longer periods (ratio 2); a dot grid of 25 frames after the phases; another tool's conventions; heterodyne beats.
 TEST_P(FpgaMacrosOnPocl, PhaseSingleEqualsReference) {
   for (const transport::testing::PhaseParameters phase :
        {transport::testing::PhaseParameters{RF_FRAME_BATCH + 2, 6}, transport::testing::PhaseParameters{4, 4, 2},
-        transport::testing::PhaseParameters{4, 4, 0, 5},
-        transport::testing::PhaseParameters{3, 4, 0, 0, 270, 1, 2, 0}}) {
+        transport::testing::PhaseParameters{4, 4, 0, 5}, transport::testing::PhaseParameters{3, 4, 0, 0, 270, 1, 2, 0},
+        transport::testing::PhaseParameters{5, 4, 0, 0, 0, 0, 1, 1, 0, 4, 2, 24, 16}}) {
     SCOPED_TRACE("ratio " + std::to_string(phase.ratio) + " dots " + std::to_string(phase.dot_spacing));
     const auto capture = transport::testing::tiny_phase_capture(phase);
     const auto linear = transport::testing::linearize(capture.frames);

@@ -237,13 +237,14 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
   explicit HlsPhaseAccumulator(TransportSetup setup)
       : steps_(phase_parameter(setup, capture::kPhaseSteps)),
         order_unit_(order_unit(setup)),
+        fringes_(heterodyne_fringes(setup)),
         periods_{axis_periods(setup, 0), axis_periods(setup, 1)} {
     setup.thresholds = resolve_thresholds(setup.thresholds, 8);
     t_ = make_empty_transport(setup);
     n_ = static_cast<unsigned>(t_.camera_pixels());
     batch_.resize(static_cast<std::size_t>(RF_FRAME_BATCH) * n_);
     sums_.assign(4 * static_cast<std::size_t>(n_), 0.0f);
-    estimates_.assign(2 * static_cast<std::size_t>(n_), 0.0f);
+    estimates_.assign(4 * static_cast<std::size_t>(n_), 0.0f);
   }
 
   void add(const TransportStep& step, const std::vector<cv::Mat>& frames, const cv::Mat& white,
@@ -259,11 +260,7 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
       if (++steps_pending_ == RF_FRAME_BATCH) add_steps();
     } else if (step.op == kPhaseFoldStep) {
       if (steps_pending_ > 0) add_steps();
-      const int n = axis == 0 ? t_.setup.projector_size.width : t_.setup.projector_size.height;
-      const int level = step.args[1];
-      phase_fold_single(axis, periods_[axis].at(level), level + 1 == static_cast<int>(periods_[axis].size()) ? 1 : 0,
-                        0.5f * static_cast<float>(n - 1), steps_, t_.setup.thresholds.white, sums_.data(),
-                        estimates_.data(), t_.flags.data(), n_);
+      fold(axis, step.args[1]);
     } else if (step.op == kPhaseDotStep) {
       if (!resolved_) resolve();
       std::copy_n(frames.at(0).ptr<float>(), n_, batch_.begin() + static_cast<std::ptrdiff_t>(dots_pending_ * n_));
@@ -300,15 +297,33 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
     resolved_ = true;
     if (steps_pending_ > 0) add_steps();
     if (pairs_pending_ > 0) add_pairs();
+    if (!fringes_.empty()) {
+      for (int axis = 0; axis < 2; ++axis) fold(axis, 0);
+    }
     phase_finalize_single(white_.ptr<float>(), black_.ptr<float>(), t_.setup.thresholds.black,
-                          t_.setup.thresholds.white, steps_, periods_[0].front(), order_unit_,
-                          t_.setup.projector_size.width, t_.setup.projector_size.height, t_.k(), t_.gray_x.data(),
-                          t_.gray_y.data(), sums_.data(), estimates_.data(), t_.flags.data(), t_.indices.data(),
-                          t_.weights.data(), t_.direct_energy.data(), t_.correspondence.data(), n_);
+                          t_.setup.thresholds.white, steps_, static_cast<float>(periods_[0].front()),
+                          static_cast<float>(periods_[1].front()), order_unit_, t_.setup.projector_size.width,
+                          t_.setup.projector_size.height, t_.k(), t_.gray_x.data(), t_.gray_y.data(), sums_.data(),
+                          estimates_.data(), t_.flags.data(), t_.indices.data(), t_.weights.data(),
+                          t_.direct_energy.data(), t_.correspondence.data(), n_);
     if (t_.setup.dot_spacing == 0) return;
     std::fill(t_.indices.begin(), t_.indices.end(), -1);
     std::fill(t_.weights.begin(), t_.weights.end(), 0.0f);
     std::fill(t_.direct_energy.begin(), t_.direct_energy.end(), 0.0f);
+  }
+
+  // phase_fold_single, or with beats phase_beat_single, as the device accumulator calls them.
+  void fold(int axis, int level) {
+    const int n = axis == 0 ? t_.setup.projector_size.width : t_.setup.projector_size.height;
+    if (fringes_.empty()) {
+      phase_fold_single(axis, static_cast<float>(periods_[axis].at(level)),
+                        level + 1 == static_cast<int>(periods_[axis].size()) ? 1 : 0, 0.5f * static_cast<float>(n - 1),
+                        steps_, t_.setup.thresholds.white, sums_.data(), estimates_.data(), t_.flags.data(), n_);
+    } else {
+      phase_beat_single(axis, level, fringes_[0], fringes_[1], fringes_.size() > 2 ? fringes_[2] : 0,
+                        static_cast<float>(n), steps_, t_.setup.thresholds.white, sums_.data(), estimates_.data(),
+                        t_.flags.data(), n_);
+    }
   }
 
   void add_dots() {
@@ -335,7 +350,8 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
 
   int steps_;
   int order_unit_;
-  std::vector<int> periods_[2];
+  std::vector<int> fringes_;
+  std::vector<double> periods_[2];
   CompressedTransport t_;
   unsigned n_ = 0;
   cv::Mat white_, black_;
@@ -354,12 +370,14 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
 
 // 5 steps of period 4 (a partial batch per axis) and RF_FRAME_BATCH + 2 steps of period 6 (a full and a partial one)
 // unwrapped by the order code, 4 steps of period 4 unwrapped by periods 8, 16, ... (ratio 2), and a 5 x 5 dot grid
-// after 4 steps of period 4 (25 dot frames: a full and a partial batch).
+// after 4 steps of period 4 (25 dot frames: a full and a partial batch); another tool's conventions (sines, an order
+// code of whole periods without inverses); heterodyne beats of 4, 2 and 1 fringes (phase_beat_single).
 TEST(HlsCsim, PhaseTopsMatchReference) {
   for (const testing::PhaseParameters phase :
        {testing::PhaseParameters{5, 4}, testing::PhaseParameters{RF_FRAME_BATCH + 2, 6},
         testing::PhaseParameters{4, 4, 2}, testing::PhaseParameters{4, 4, 0, 5},
-        testing::PhaseParameters{3, 4, 0, 0, 270, 1, 2, 0}}) {
+        testing::PhaseParameters{3, 4, 0, 0, 270, 1, 2, 0},
+        testing::PhaseParameters{5, 4, 0, 0, 0, 0, 1, 1, 0, 4, 2, 24, 16}}) {
     SCOPED_TRACE("steps " + std::to_string(phase.steps) + " ratio " + std::to_string(phase.ratio) + " dots " +
                  std::to_string(phase.dot_spacing));
     const auto capture = testing::tiny_phase_capture(phase);

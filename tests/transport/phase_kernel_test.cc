@@ -23,7 +23,9 @@ constexpr KernelEntry kEntries[] = {KernelEntry::kNdRange, KernelEntry::kSingleW
 // (a full and a partial one); by longer periods: ratio 2 (periods 4, 8, 16, 32 of the columns, 4, 8, 16, 28 of the
 // rows) and ratio 4 (4, 16, 32 and 4, 16, 28); then a 5 x 5 dot grid (a full and a partial batch of RF_FRAME_BATCH);
 // another tool's conventions: sinusoids of origin 270 degrees shifting the other way, an order code of whole periods
-// without inverses (period 4 and 6), and ratio 2 ending at the first period that spans the axis (4, 8, 16).
+// without inverses (period 4 and 6), and ratio 2 ending at the first period that spans the axis (4, 8, 16); heterodyne
+// beats of 3 and 2 fringes (periods 5.33 and 8 of the columns, 4 and 6 of the rows) and of 4, 2 and 1 fringes on a
+// 24 x 16 projector (6, 12, 24 and 4, 8, 16).
 constexpr testing::PhaseParameters kCases[] = {{5, 4},
                                                {RF_FRAME_BATCH + 2, 6},
                                                {4, 4, 2},
@@ -31,7 +33,9 @@ constexpr testing::PhaseParameters kCases[] = {{5, 4},
                                                {4, 4, 0, 5},
                                                {3, 4, 0, 0, 270, 1, 2, 0},
                                                {4, 6, 0, 0, 90, 1, 2, 0},
-                                               {4, 4, 2, 0, 0, 0, 1, 1, 1}};
+                                               {4, 4, 2, 0, 0, 0, 1, 1, 1},
+                                               {4, 4, 0, 0, 0, 0, 1, 1, 0, 3, 1},
+                                               {5, 4, 0, 0, 0, 0, 1, 1, 0, 4, 2, 24, 16}};
 
 class PhaseKernelTest : public ::testing::Test {
  protected:
@@ -62,7 +66,7 @@ TEST_F(PhaseKernelTest, StepsOrderPairsAndFinalizeMatchReference) {
     }
     ASSERT_GT(valid, expected.camera_pixels() / 2) << "the reference must decode most of the plane";
     EXPECT_GT(close, valid * 9 / 10) << "the reference's correspondences must lie near the truth";
-    if (phase.ratio == 0 && phase.order_unit == 1) {
+    if (phase.ratio == 0 && phase.heterodyne == 0 && phase.order_unit == 1) {
       // A pixel whose order pair is too weak to decide lies at that stripe's edge: it is decoded, and as close.
       const float white = resolve_thresholds(setup.thresholds, 8).white;
       std::size_t undecided = 0, undecided_close = 0;
@@ -94,8 +98,8 @@ TEST_F(PhaseKernelTest, StepsOrderPairsAndFinalizeMatchReference) {
       for (std::size_t c = 0; c < expected.camera_pixels(); ++c) {
         const int q = expected.indices[c * static_cast<std::size_t>(expected.k())];
         if ((expected.flags[c] & kFlagValid) == 0 || q < 0) continue;
-        const float dx = static_cast<float>(q % 16) - expected.correspondence[2 * c];
-        const float dy = static_cast<float>(q / 16) - expected.correspondence[2 * c + 1];
+        const float dx = static_cast<float>(q % phase.projector_width) - expected.correspondence[2 * c];
+        const float dy = static_cast<float>(q / phase.projector_width) - expected.correspondence[2 * c + 1];
         near_dot += std::abs(dx) <= 0.5f * phase.dot_spacing + 0.5f && std::abs(dy) <= 0.5f * phase.dot_spacing + 0.5f;
       }
       EXPECT_GT(near_dot, valid * 9 / 10) << "the dot frames must fill the rows at the phases' projector pixels";

@@ -38,13 +38,15 @@ std::map<std::string, int> phase_parameters(PhaseParameters phase) {
           {capture::kPhaseReversed, phase.reversed},
           {capture::kOrderUnit, phase.order_unit},
           {capture::kOrderInverses, phase.order_inverses},
+          {capture::kPhaseFringes, phase.fringes},
+          {capture::kPhaseHeterodyne, phase.heterodyne},
           {capture::kPhaseCoarsest, phase.coarsest}};
 }
 
 TinyCapture tiny_phase_capture(PhaseParameters phase) {
   SceneOptions options;
   options.camera_size = {24, 20};
-  options.projector_size = {16, 12};
+  options.projector_size = {phase.projector_width, phase.projector_height};
   const capture::ProtocolOptions protocol{options.projector_size, phase.dot_spacing, "phase", phase_parameters(phase)};
   TinyCapture capture{make_plane_scene(options), capture::make_protocol(protocol), {}};
   capture.frames = render_frames(capture.scene, capture.sequence, protocol, 1.0, 7);
@@ -52,7 +54,7 @@ TinyCapture tiny_phase_capture(PhaseParameters phase) {
 }
 
 TransportSetup phase_setup_for(const std::vector<cv::Mat>& frames, PhaseParameters phase, int k) {
-  TransportSetup setup = setup_for(frames, {16, 12}, phase.dot_spacing, k);
+  TransportSetup setup = setup_for(frames, {phase.projector_width, phase.projector_height}, phase.dot_spacing, k);
   setup.family = "phase";
   setup.parameters = phase_parameters(phase);
   return setup;

@@ -39,9 +39,13 @@ struct PhaseParameters {
   int order_unit = 1;
   int order_inverses = 1;
   int coarsest = 0;
+  int fringes = 0;     // capture::kPhaseFringes
+  int heterodyne = 0;  // capture::kPhaseHeterodyne
+  int projector_width = 16;
+  int projector_height = 12;
 };
 
-// The tiny capture through the phase family's sequence on a 16 x 12 projector.
+// The tiny capture through the phase family's sequence on its projector (16 x 12 unless it says).
 TinyCapture tiny_phase_capture(PhaseParameters phase);
 // The setup of a phase capture of `frames`: the family and its parameters, K entries per pixel.
 TransportSetup phase_setup_for(const std::vector<cv::Mat>& frames, PhaseParameters phase, int k);
