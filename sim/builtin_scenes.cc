@@ -1,7 +1,10 @@
 // Built-in scenes, defined as scene JSON so they go through the same validation as scene files.
 #include "sim/builtin_scenes.h"
 
+#include <cmath>
 #include <filesystem>
+
+#include <Eigen/Geometry>
 
 #include "host/capture/pattern_family.h"
 #include "host/core/errors.h"
@@ -67,6 +70,88 @@ json cylinder_brushed() {
        {"material",
         {{"brdf", "ashikhmin-shirley"}, {"diffuse", 0.3}, {"specular", 0.4}, {"n_u", 10.0}, {"n_v", 200.0}}},
        {"tangent", {0.0, 0.0, 1.0}}},
+      wall(800.0)};
+  return scene;
+}
+
+// A concave scene, which lights itself: one bounce of interreflection, 16 cosine-weighted rays per camera sample.
+json concave_scene(const char* name) {
+  json scene = lab_rig({{"name", name}});
+  scene["radiometry"] = {{"intensity", 2.0e6}};
+  scene["render"] = {{"interreflection_samples", 16}};
+  return scene;
+}
+
+json ward_brushed() {
+  return {{"brdf", "ward"}, {"diffuse", 0.2}, {"specular", 0.5}, {"alpha_x", 0.08}, {"alpha_y", 0.3}};
+}
+
+// A pose of world_from_object rotation `rotation`, as scene JSON's row-major rotation_matrix.
+json pose_of(const Eigen::Vector3d& position, const Eigen::Matrix3d& rotation) {
+  json matrix = json::array();
+  for (int row = 0; row < 3; ++row) {
+    for (int column = 0; column < 3; ++column) matrix.push_back(rotation(row, column));
+  }
+  return {{"position", {position.x(), position.y(), position.z()}}, {"rotation_matrix", matrix}};
+}
+
+// A 90-degree groove along y, its bottom line 620 mm away: two 60 x 90 mm faces of brushed metal (brushed across the
+// groove), each 45 degrees to the line of sight, so that each face sees the other.
+json v_groove() {
+  json scene = concave_scene("v-groove-ward");
+  const double half = 30.0 * std::sqrt(0.5);  // half a face's width, along x and along z
+  for (const int side : {-1, 1}) {
+    const Eigen::Matrix3d rotation =
+        Eigen::AngleAxisd(side * EIGEN_PI / 4, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    scene["objects"].push_back({{"name", side < 0 ? "left face" : "right face"},
+                                {"shape", "plane"},
+                                {"size", {60.0, 90.0}},
+                                {"pose", pose_of({side * half, 0.0, 620.0 - half}, rotation)},
+                                {"material", ward_brushed()},
+                                {"tangent", {1.0, 0.0, 0.0}}});
+  }
+  scene["objects"].push_back(wall(800.0));
+  return scene;
+}
+
+// The inside corner of a box: three mutually perpendicular 70 x 70 mm faces meeting 650 mm away, the corner's diagonal
+// along the line of sight (turned 15 degrees about it), brushed (Ashikhmin-Shirley) along each face's first edge.
+json inside_corner() {
+  json scene = concave_scene("corner-brushed");
+  const Eigen::Matrix3d corner_frame =
+      (Eigen::AngleAxisd(EIGEN_PI / 12, Eigen::Vector3d::UnitZ()) *
+       Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(), -Eigen::Vector3d::UnitZ()))
+          .toRotationMatrix();
+  const Eigen::Vector3d corner(0.0, 0.0, 650.0);
+  const double side = 70.0;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d u = corner_frame.col((k + 1) % 3), v = corner_frame.col((k + 2) % 3);
+    Eigen::Matrix3d rotation;
+    rotation << u, v, u.cross(v);
+    scene["objects"].push_back(
+        {{"name", "face " + std::to_string(k + 1)},
+         {"shape", "plane"},
+         {"size", {side, side}},
+         {"pose", pose_of(corner + 0.5 * side * (u + v), rotation)},
+         {"material",
+          {{"brdf", "ashikhmin-shirley"}, {"diffuse", 0.3}, {"specular", 0.4}, {"n_u", 10.0}, {"n_v", 200.0}}},
+         {"tangent", {1.0, 0.0, 0.0}}});
+  }
+  scene["objects"].push_back(wall(800.0));
+  return scene;
+}
+
+// A hemispherical bowl of 60 mm radius and 45 mm depth, open towards the camera, its bottom 660 mm away, tilted 20
+// degrees about x so that the projector above sees into it; Ward anisotropic.
+json bowl() {
+  json scene = concave_scene("bowl-ward");
+  scene["objects"] = {
+      {{"name", "bowl"},
+       {"shape", "bowl"},
+       {"size", {60.0, 45.0}},
+       {"pose", {{"position", {0.0, 0.0, 600.0}}, {"rotation_deg", {160.0, 0.0, 0.0}}}},
+       {"material", {{"brdf", "ward"}, {"diffuse", 0.3}, {"specular", 0.4}, {"alpha_x", 0.1}, {"alpha_y", 0.25}}},
+       {"tangent", {1.0, 0.0, 0.0}}},
       wall(800.0)};
   return scene;
 }
@@ -139,6 +224,11 @@ const BuiltinScene kBuiltins[] = {
     {"cylinder-brushed", "40 mm radius cylinder, brushed along its axis (Ashikhmin-Shirley); wall behind",
      cylinder_brushed},
     {"plane-lambert", "Lambertian plane at 600 mm tilted 20 degrees", plane_lambert},
+    {"v-groove-ward", "90-degree groove of two 60 mm faces, Ward brushed metal, with one-bounce interreflection",
+     v_groove},
+    {"corner-brushed", "inside corner of three 70 mm faces, brushed (Ashikhmin-Shirley), with interreflection",
+     inside_corner},
+    {"bowl-ward", "60 mm radius bowl, 45 mm deep, Ward anisotropic, with one-bounce interreflection", bowl},
     {"checkerboard-poses", "14x9-corner checkerboard (20 mm squares) at 16 poses, for calibration", checkerboard_poses},
     {"board-plane", "a 9x6-corner checkerboard (30 mm squares) at a pose not among checkerboard-poses, for flatness",
      board_plane},
@@ -186,6 +276,7 @@ Scene resolve_scene(const std::string& name_or_file, const SceneChanges& changes
   if (!changes.camera_size.empty()) resize_device(scene.camera, changes.camera_size);
   if (!changes.projector_size.empty()) resize_device(scene.projector, changes.projector_size);
   if (changes.supersample) scene.render.supersample = *changes.supersample;
+  if (changes.interreflection) scene.render.interreflection_samples = *changes.interreflection;
   if (!changes.family.empty()) {
     (void)capture::pattern_family(changes.family);  // InputError listing the families for an unknown one
     scene.capture.family = changes.family;

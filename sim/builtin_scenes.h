@@ -33,6 +33,7 @@ struct SceneChanges {
   cv::Size camera_size;                     // the camera's resolution, its field of view kept
   cv::Size projector_size;                  // the same for the projector
   std::optional<int> supersample;           // rays per pixel side
+  std::optional<int> interreflection;       // one-bounce rays per sample, 0 = off (render.interreflection_samples)
   std::string family;                       // a pattern family; other than graycode, the dot spacing is 0 unless given
   std::map<std::string, int> parameters{};  // the family's parameters (replacing the scene's when family is given)
   std::optional<int> dot_spacing;           // 0 (no dot grid) or at least 2: InputError for 1

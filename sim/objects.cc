@@ -1,4 +1,5 @@
-// Analytic ray intersections (plane, box, sphere, cylinder), a BVH for triangle meshes, and mesh loading (assimp).
+// Analytic ray intersections (plane, box, sphere, cylinder, bowl), a BVH for triangle meshes, and mesh loading
+// (assimp).
 #include "sim/objects.h"
 
 #include <algorithm>
@@ -88,6 +89,15 @@ std::optional<LocalHit> intersect_sphere(const Object& o, const Ray& r, double t
   const double radius = o.size[0];
   const auto t = nearest_root(1.0, r.origin.dot(r.direction), r.origin.squaredNorm() - radius * radius, t_min, t_max,
                               [](double) { return true; });
+  if (!t) return std::nullopt;
+  return LocalHit{*t, (r.origin + *t * r.direction).normalized()};
+}
+
+std::optional<LocalHit> intersect_bowl(const Object& o, const Ray& r, double t_min, double t_max) {
+  const double radius = o.size[0];
+  const double rim = o.size[1] - radius;
+  const auto t = nearest_root(1.0, r.origin.dot(r.direction), r.origin.squaredNorm() - radius * radius, t_min, t_max,
+                              [&](double t) { return r.origin.z() + t * r.direction.z() <= rim; });
   if (!t) return std::nullopt;
   return LocalHit{*t, (r.origin + *t * r.direction).normalized()};
 }
@@ -223,6 +233,8 @@ const char* to_string(ShapeKind kind) {
       return "cylinder";
     case ShapeKind::kMesh:
       return "mesh";
+    case ShapeKind::kBowl:
+      return "bowl";
   }
   return "?";
 }
@@ -258,6 +270,9 @@ std::optional<Hit> intersect(const Object& object, const Ray& ray, double min_di
       break;
     case ShapeKind::kMesh:
       hit = intersect_mesh(object, local, min_distance, max_distance);
+      break;
+    case ShapeKind::kBowl:
+      hit = intersect_bowl(object, local, min_distance, max_distance);
       break;
   }
   if (!hit) return std::nullopt;
@@ -350,6 +365,8 @@ std::pair<double, std::string> characteristic_size_mm(const Object& object) {
     case ShapeKind::kPlane:
       if (s[0] <= 0.0) return {0.0, "none (infinite plane)"};
       return {std::max(s[0], s[1]), "longest side"};
+    case ShapeKind::kBowl:  // the rim's diameter, or the sphere's when the bowl is deeper than its radius
+      return {s[1] < s[0] ? 2.0 * std::sqrt(s[1] * (2.0 * s[0] - s[1])) : 2.0 * s[0], "widest diameter"};
     case ShapeKind::kMesh: {
       Eigen::AlignedBox3d bounds;
       for (const auto& vertex : object.mesh->vertices) bounds.extend(vertex);

@@ -1,5 +1,6 @@
 // Scene objects of the synthetic rig and their ray intersections: plane (finite or infinite, optional checkerboard
-// albedo), box, sphere, cylinder (with caps) and triangle mesh. Lengths in millimetres.
+// albedo), box, sphere, cylinder (with caps), bowl (a spherical cap, seen from inside) and triangle mesh. Lengths in
+// millimetres.
 #pragma once
 
 #include <memory>
@@ -15,7 +16,7 @@
 
 namespace rfrecon::sim {
 
-enum class ShapeKind { kPlane, kBox, kSphere, kCylinder, kMesh };
+enum class ShapeKind { kPlane, kBox, kSphere, kCylinder, kMesh, kBowl };
 const char* to_string(ShapeKind kind);
 
 // Checkerboard albedo on a plane: squares[0] x squares[1] squares of side square_size, centred on the plane origin,
@@ -50,7 +51,8 @@ struct Object {
   ShapeKind kind = ShapeKind::kPlane;
   Eigen::Isometry3d world_from_object = Eigen::Isometry3d::Identity();
   // plane: [w, h] of a finite rectangle in the object's z = 0 plane (0 = infinite), normal +z;
-  // box: [x, y, z] edge lengths, centred; sphere: [r]; cylinder: [r, height] along z, centred.
+  // box: [x, y, z] edge lengths, centred; sphere: [r]; cylinder: [r, height] along z, centred; bowl: [r, depth], the
+  // part of the sphere of radius r about the origin with z <= depth - r, a thin shell open towards +z.
   std::vector<double> size;
   Brdf material;
   Eigen::Vector3d tangent_object{1.0, 0.0, 0.0};  // brushing direction, projected onto each surface's tangent plane

@@ -209,11 +209,11 @@ Checkerboard parse_checkerboard(const Reader& r, const json& j, const std::strin
 }
 
 ShapeKind shape_from_string(const Reader& r, const std::string& name, const std::string& path) {
-  for (const auto kind :
-       {ShapeKind::kPlane, ShapeKind::kBox, ShapeKind::kSphere, ShapeKind::kCylinder, ShapeKind::kMesh}) {
+  for (const auto kind : {ShapeKind::kPlane, ShapeKind::kBox, ShapeKind::kSphere, ShapeKind::kCylinder,
+                          ShapeKind::kMesh, ShapeKind::kBowl}) {
     if (name == to_string(kind)) return kind;
   }
-  r.fail(path, "unknown shape '" + excerpt(name) + "' (expected plane, box, sphere, cylinder or mesh)");
+  r.fail(path, "unknown shape '" + excerpt(name) + "' (expected plane, box, sphere, cylinder, bowl or mesh)");
 }
 
 Object parse_object(const Reader& r, const json& j, const std::string& path, std::size_t index,
@@ -223,7 +223,7 @@ Object parse_object(const Reader& r, const json& j, const std::string& path, std
   o.name = r.get<std::string>(j, path, "name", "object" + std::to_string(index));
   o.kind = shape_from_string(r, r.get<std::string>(j, path, "shape"), Reader::join(path, "shape"));
   const std::string size_path = Reader::join(path, "size");
-  const std::size_t size_count[] = {2, 3, 1, 2, 0};
+  const std::size_t size_count[] = {2, 3, 1, 2, 0, 2};
   const std::size_t count = size_count[static_cast<int>(o.kind)];
   if (count > 0) {
     if (o.kind == ShapeKind::kPlane && !j.contains("size")) {
@@ -238,6 +238,9 @@ Object parse_object(const Reader& r, const json& j, const std::string& path, std
     }
     if (o.kind == ShapeKind::kPlane && (o.size[0] == 0.0) != (o.size[1] == 0.0)) {
       r.fail(size_path, "give both sides > 0, or both 0 for an infinite plane");
+    }
+    if (o.kind == ShapeKind::kBowl && o.size[1] > 2.0 * o.size[0]) {
+      r.fail(size_path, "a bowl's depth must be at most its diameter");
     }
   } else if (j.contains("size")) {
     r.fail(size_path, "meshes take 'scale', not 'size'");

@@ -27,6 +27,7 @@ struct SimulateCommandOptions {
   std::string camera_size;
   std::string projector_size;
   std::optional<int> supersample;
+  std::optional<int> interreflection;
   std::string family;
   std::shared_ptr<std::map<std::string, int>> parameters = std::make_shared<std::map<std::string, int>>();
   std::optional<int> dot_spacing;
@@ -48,6 +49,7 @@ void run_simulate(const SimulateCommandOptions& o) {
   if (!o.camera_size.empty()) changes.camera_size = parse_size(o.camera_size, "--camera");
   if (!o.projector_size.empty()) changes.projector_size = parse_size(o.projector_size, "--projector");
   changes.supersample = o.supersample;
+  changes.interreflection = o.interreflection;
   changes.family = o.family;
   changes.parameters = *o.parameters;
   changes.dot_spacing = o.dot_spacing;
@@ -74,6 +76,10 @@ void add_simulate_command(CLI::App& app) {
   command->add_option("--projector", o->projector_size, "Projector resolution WxH (keeps the field of view)");
   command->add_option("--supersample", o->supersample, "Sub-pixel rays per camera pixel side (default: scene's, 4)")
       ->check(CLI::Range(1, 32));
+  command
+      ->add_option("--interreflection", o->interreflection,
+                   "One-bounce interreflection rays per sub-pixel sample, 0 = off (default: the scene's)")
+      ->check(CLI::Range(0, 1024));
   command->add_option("--family", o->family, "Pattern family of the capture (default: the scene's, graycode)")
       ->check(CLI::IsMember(capture::pattern_family_names()));
   add_family_parameter_options(*command, o->parameters);

@@ -1,11 +1,13 @@
 // Geometry of the analytic shapes and meshes as rendered: surface points lie on the shape, normals are the shape's,
-// a triangle mesh of a box renders like the box, and one-bounce interreflection adds light only where surfaces
-// see each other.
+// a bowl is seen from inside, a triangle mesh of a box renders like the box, and one-bounce interreflection adds light
+// only where surfaces see each other, as it does in the built-in concave scenes.
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
 #include <gtest/gtest.h>
 
+#include "sim/builtin_scenes.h"
 #include "sim/render.h"
 #include "tests/common/temp_dir.h"
 #include "tests/sim/test_scenes.h"
@@ -99,6 +101,29 @@ TEST(ShapesTest, TriangleMeshOfABoxRendersLikeTheBox) {
   EXPECT_EQ(differ, 0);
 }
 
+TEST(ShapesTest, BowlIsTheInsideOfItsCap) {
+  // A 50 mm sphere's cap 30 mm deep, open towards the camera (object +z turned to -z): every seen point lies on the
+  // sphere and below the rim (object z <= depth - r = -20), its normal towards the camera; the bottom, 650 mm away,
+  // is seen through the opening, 30 mm behind the rim.
+  const Scene bowl = make_scene(small_rig({object("bowl", {50.0, 30.0}, {0.0, 0.0, 600.0}, {180, 0, 0})}));
+  const auto truth = render_transport(bowl, {1}).truth;
+  const Eigen::Vector3d centre(0.0, 0.0, 600.0);
+  int count = 0;
+  double deepest = 0.0;
+  for (int i = 0; i < truth.points_mm.rows * truth.points_mm.cols; ++i) {
+    const cv::Vec3f p = truth.points_mm.at<cv::Vec3f>(i), n = truth.normals.at<cv::Vec3f>(i);
+    if (!std::isfinite(p[0])) continue;
+    const Eigen::Vector3d X(p[0], p[1], p[2]);
+    EXPECT_NEAR((X - centre).norm(), 50.0, 1e-3);
+    EXPECT_GE(X.z() - centre.z(), 20.0 - 1e-3) << "in front of the rim";  // object z = -(world z - 600)
+    EXPECT_LT(Eigen::Vector3d(n[0], n[1], n[2]).dot(X), 0.0) << "the normal faces the camera";
+    deepest = std::max(deepest, X.z());
+    ++count;
+  }
+  EXPECT_GT(count, 100);
+  EXPECT_NEAR(deepest, 650.0, 0.5);
+}
+
 TEST(ShapesTest, InterreflectionOnlyWhereSurfacesSeeEachOther) {
   // A lone plane cannot light itself: T is identical with and without interreflection. In a concave corner of two
   // planes, light can only be added (every row sum >= its direct value) and some pixels gain.
@@ -123,6 +148,37 @@ TEST(ShapesTest, InterreflectionOnlyWhereSurfacesSeeEachOther) {
   EXPECT_GT((b - a).maxCoeff(), 0.01f * a.maxCoeff());
 }
 
+TEST(ShapesTest, ConcaveBuiltinScenesLightThemselves) {
+  // Each concave scene renders its interreflection by default, and there it adds light (at 64 x 51 pixels, one ray
+  // per pixel): the concave object's pixels (not the wall's) gain at least 5 % in all, and no pixel loses any.
+  for (const char* name : {"v-groove-ward", "corner-brushed", "bowl-ward"}) {
+    SceneChanges changes;
+    changes.camera_size = {64, 51};
+    changes.supersample = 1;
+    const Scene scene = resolve_scene(name, changes);
+    ASSERT_GT(scene.render.interreflection_samples, 0) << name;
+    const auto bounce = render_transport(scene);
+    changes.interreflection = 0;  // simulate --interreflection 0
+    const Scene without = resolve_scene(name, changes);
+    ASSERT_EQ(without.render.interreflection_samples, 0) << name;
+    const auto direct = render_transport(without).T;
+    const Eigen::VectorXf ones = Eigen::VectorXf::Ones(direct.cols());
+    const Eigen::VectorXf a = direct * ones, b = bounce.T * ones;
+    EXPECT_TRUE(((b - a).array() >= -1e-6f * a.array()).all()) << name;
+    const auto wall = static_cast<std::uint16_t>(scene.objects.size());  // the last object, labelled from 1
+    double object_direct = 0.0, object_bounce = 0.0;
+    for (int c = 0; c < static_cast<int>(a.size()); ++c) {
+      const auto label = bounce.truth.object_id.at<std::uint16_t>(c);
+      if (label == 0 || label == wall) continue;
+      object_direct += a[c];
+      object_bounce += b[c];
+    }
+    std::printf("%s: interreflection adds %.1f %% to the object's light\n", name,
+                100.0 * (object_bounce / object_direct - 1.0));
+    EXPECT_GT(object_bounce, 1.05 * object_direct) << name;
+  }
+}
+
 TEST(CharacteristicSize, FollowsTheDocumentedRulePerShape) {
   Object o;
   o.kind = ShapeKind::kBox;
@@ -141,6 +197,11 @@ TEST(CharacteristicSize, FollowsTheDocumentedRulePerShape) {
   EXPECT_EQ(characteristic_size_mm(o).first, 400.0);
   o.size = {0.0, 0.0};  // infinite
   EXPECT_EQ(characteristic_size_mm(o).first, 0.0);
+  o.kind = ShapeKind::kBowl;
+  o.size = {50.0, 20.0};  // radius, depth: the rim's diameter 2 sqrt(20 (100 - 20)) = 80
+  EXPECT_NEAR(characteristic_size_mm(o).first, 80.0, 1e-9);
+  o.size = {50.0, 70.0};  // deeper than the radius: the sphere's diameter
+  EXPECT_EQ(characteristic_size_mm(o).first, 100.0);
   o.kind = ShapeKind::kMesh;
   auto mesh = std::make_shared<TriangleMesh>();
   mesh->vertices = {{-5.0, 0.0, 0.0}, {5.0, 12.0, 0.0}, {0.0, 0.0, 3.0}};
