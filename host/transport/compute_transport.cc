@@ -243,8 +243,8 @@ class TransportBlocks final : public sched::BlockTask {
       std::copy(part.indices.begin(), part.indices.end(), whole.indices.begin() + first * k);
       std::copy(part.weights.begin(), part.weights.end(), whole.weights.begin() + first * k);
       std::copy(part.correspondence.begin(), part.correspondence.end(), whole.correspondence.begin() + 2 * first);
-      std::copy(part.gray_x.begin(), part.gray_x.end(), whole.gray_x.begin() + first);
-      std::copy(part.gray_y.begin(), part.gray_y.end(), whole.gray_y.begin() + first);
+      std::copy(part.pixel_x.begin(), part.pixel_x.end(), whole.pixel_x.begin() + first);
+      std::copy(part.pixel_y.begin(), part.pixel_y.end(), whole.pixel_y.begin() + first);
       std::copy(part.flags.begin(), part.flags.end(), whole.flags.begin() + first);
       std::copy(part.direct_energy.begin(), part.direct_energy.end(), whole.direct_energy.begin() + first);
     }

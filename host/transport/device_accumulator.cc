@@ -40,8 +40,8 @@ class DeviceAccumulator final : public GraycodeAccumulator {
     pairs_buffer_ = cl::make_buffer<cl_uint>(context, pairs_.size());
     // The transport's own arrays, in their initial state, are the kernels' state: no copy in or out on runtimes that
     // run kernels on host memory. T's rows come with the first dot frame or finish() (share_rows).
-    gray_x_ = cl::share(context, state_.gray_x);
-    gray_y_ = cl::share(context, state_.gray_y);
+    code_x_ = cl::share(context, state_.pixel_x);
+    code_y_ = cl::share(context, state_.pixel_y);
     flags_ = cl::share(context, state_.flags);
     energy_ = cl::share(context, state_.direct_energy);
     correspondence_ = cl::share(context, state_.correspondence);
@@ -59,7 +59,7 @@ class DeviceAccumulator final : public GraycodeAccumulator {
     if (gray_pending_ > 0) decode_batch();
     frames_.set_white_black(white, black);
     cl::set_args(gray_finalize_, frames_.white(), frames_.black(), setup_.thresholds.black, setup_.projector_size.width,
-                 setup_.projector_size.height, gray_x_, gray_y_, flags_, frames_.count());
+                 setup_.projector_size.height, code_x_, code_y_, flags_, frames_.count());
     frames_.run(gray_finalize_, frames_.lanes_items());
   }
 
@@ -75,13 +75,13 @@ class DeviceAccumulator final : public GraycodeAccumulator {
     if (pending_ > 0) compress_batch();
     share_rows();
     cl::set_args(finalize_, frames_.white(), frames_.black(), setup_.dot_spacing > 0 ? 1 : 0,
-                 setup_.projector_size.width, setup_.thresholds.noise, flags_, gray_x_, gray_y_, indices_, weights_,
+                 setup_.projector_size.width, setup_.thresholds.noise, flags_, code_x_, code_y_, indices_, weights_,
                  energy_, correspondence_, frames_.count());
     frames_.run(finalize_, frames_.count());
-    for (const auto* buffer : {&gray_x_, &gray_y_, &flags_, &indices_, &weights_, &energy_, &correspondence_}) {
+    for (const auto* buffer : {&code_x_, &code_y_, &flags_, &indices_, &weights_, &energy_, &correspondence_}) {
       cl::sync_to_host(device_.queue(), *buffer);
     }
-    gray_x_ = gray_y_ = flags_ = indices_ = weights_ = energy_ = correspondence_ = ::cl::Buffer();
+    code_x_ = code_y_ = flags_ = indices_ = weights_ = energy_ = correspondence_ = ::cl::Buffer();
     frames_.release();
     return std::move(state_);
   }
@@ -93,7 +93,7 @@ class DeviceAccumulator final : public GraycodeAccumulator {
     cl::write_buffer(device_.queue(), pairs_buffer_, pairs_.data(), pairs_.size(), false);
     const cl_uint next = frames_.set_arguments(gray_pairs_, 2 * gray_pending_);
     cl::set_args_from(gray_pairs_, next, static_cast<cl_int>(gray_pending_), pairs_buffer_, setup_.thresholds.white,
-                      gray_x_, gray_y_, flags_, frames_.count());
+                      code_x_, code_y_, flags_, frames_.count());
     frames_.run_batch(gray_pairs_);
     gray_pending_ = 0;
     pairs_.fill(0);
@@ -117,7 +117,7 @@ class DeviceAccumulator final : public GraycodeAccumulator {
     const bool fresh = entry_ == KernelEntry::kNdRange && indices_() == nullptr;
     share_rows(fresh);
     frames_.run_dot_frames(dot_frames_, pending_, offsets_, fresh,
-                           {flags_, gray_x_, gray_y_, indices_, weights_, energy_});
+                           {flags_, code_x_, code_y_, indices_, weights_, energy_});
     pending_ = 0;
     offsets_.fill(0);
   }
@@ -133,7 +133,7 @@ class DeviceAccumulator final : public GraycodeAccumulator {
   DeviceFrames frames_;
   CompressedTransport state_;  // the kernels' state, shared with them (cl::share) until finish() returns it
   ::cl::Kernel gray_pairs_, gray_finalize_, dot_frames_, finalize_;
-  ::cl::Buffer pairs_buffer_, gray_x_, gray_y_, flags_, indices_, weights_, energy_, correspondence_;
+  ::cl::Buffer pairs_buffer_, code_x_, code_y_, flags_, indices_, weights_, energy_, correspondence_;
   std::size_t gray_pending_ = 0;                               // Gray pairs in the batch not yet decoded
   std::array<cl_uint, 2 * kGrayBatch> pairs_ = {};             // their (bit mask, axis)
   std::size_t pending_ = 0;                                    // dot frames in the batch not yet compressed

@@ -60,8 +60,8 @@ void add_dot_frame_to_rows(CompressedTransport& t, int offset_x, int offset_y, c
   for (std::size_t c = 0; c < t.camera_pixels(); ++c) {
     const float v = frame[c] - black[c];
     if (!compressible(t.flags[c]) || !(v > t.setup.thresholds.noise)) continue;
-    const int qx = nearest_dot(static_cast<int>(t.gray_x[c]), offset_x, s);
-    const int qy = nearest_dot(static_cast<int>(t.gray_y[c]), offset_y, s);
+    const int qx = nearest_dot(static_cast<int>(t.pixel_x[c]), offset_x, s);
+    const int qy = nearest_dot(static_cast<int>(t.pixel_y[c]), offset_y, s);
     if (qx < 0 || qx >= projector.width || qy < 0 || qy >= projector.height) continue;
     t.direct_energy[c] += v;
     insert(t, c, qy * projector.width + qx, v);

@@ -14,7 +14,7 @@ void check_dot_offsets(const TransportSetup& setup, int offset_x, int offset_y);
 void check_kernel_dot_spacing(int dot_spacing);
 
 // Dot frame (offset_x, offset_y), linear, into the rows of the compressible pixels: frame - black above the noise
-// threshold goes to the dot nearest each pixel's decoded projector pixel (gray_x, gray_y) and adds to its direct
+// threshold goes to the dot nearest each pixel's decoded projector pixel (pixel_x, pixel_y) and adds to its direct
 // energy; a row keeps its K strongest entries by decreasing weight, a new entry after equal ones.
 void add_dot_frame_to_rows(CompressedTransport& t, int offset_x, int offset_y, const float* frame, const float* black);
 

@@ -158,7 +158,7 @@ GrayDecisionCounts GrayDecision::decide(CompressedTransport& transport) const {
         AxisDecision axes[2];
         for (int axis = 0; axis < 2; ++axis) {
           const Margins& m = margins_[static_cast<std::size_t>(axis)];
-          const std::uint32_t code = axis == 0 ? transport.gray_x[c] : transport.gray_y[c];
+          const std::uint32_t code = axis == 0 ? transport.pixel_x[c] : transport.pixel_y[c];
           axes[axis] = decide_axis(code, extent[axis], m.smallest[c], m.smallest_signed[c], m.mask[c], m.second[c],
                                    threshold, contrast);
         }

@@ -207,7 +207,7 @@ void GraySubpixel::refine(CompressedTransport& transport) const {
   }
   const int width = camera_size_.width;
   for (int axis = 0; axis < 2; ++axis) {
-    const auto& code = axis == 0 ? transport.gray_x : transport.gray_y;
+    const auto& code = axis == 0 ? transport.pixel_x : transport.pixel_y;
     const Window window{usable_boundaries(crossing_[axis], code, transport.flags, camera_size_), crossing_[axis],
                         camera_size_, options_};
     // Rows in parallel: each pixel's fit reads the boundaries and writes only its own correspondence.

@@ -122,8 +122,8 @@ class PhaseAccumulator final : public TransportAccumulator {
         continue;
       }
       // A low-contrast pixel keeps its projector pixel: the dot grid's rows are filled there.
-      t_.gray_x[c] = static_cast<std::uint32_t>(qx);
-      t_.gray_y[c] = static_cast<std::uint32_t>(qy);
+      t_.pixel_x[c] = static_cast<std::uint32_t>(qx);
+      t_.pixel_y[c] = static_cast<std::uint32_t>(qy);
       if (!contrasted) {
         t_.flags[c] = kFlagLowContrast;
       } else {

@@ -54,9 +54,9 @@ class PhaseDeviceAccumulator final : public TransportAccumulator {
     // One estimate per axis, or with beats two slots of phases per axis (phase_beat).
     estimates_ =
         cl::upload(context, zeros.data(), fringes_.empty() ? zeros.size() / 2 : zeros.size(), CL_MEM_READ_WRITE);
-    // T's arrays, the order codes in gray_x / gray_y until phase_finalize writes the projector pixels there.
-    code_x_ = cl::share(context, state_.gray_x);
-    code_y_ = cl::share(context, state_.gray_y);
+    // T's arrays, the order codes in pixel_x / pixel_y until phase_finalize writes the projector pixels there.
+    code_x_ = cl::share(context, state_.pixel_x);
+    code_y_ = cl::share(context, state_.pixel_y);
     flags_ = cl::share(context, state_.flags);
     indices_ = cl::share(context, state_.indices);
     weights_ = cl::share(context, state_.weights);

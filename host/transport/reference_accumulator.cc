@@ -56,7 +56,7 @@ class ReferenceAccumulator final : public GraycodeAccumulator {
     const cv::Mat inverse_linear = linear_frame(inverse, t_.setup);
     const float* p = pattern_linear.ptr<float>();
     const float* inv = inverse_linear.ptr<float>();
-    auto& code = axis == GrayAxis::kColumns ? t_.gray_x : t_.gray_y;
+    auto& code = axis == GrayAxis::kColumns ? t_.pixel_x : t_.pixel_y;
     for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
       if (p[c] > inv[c]) code[c] |= mask;
       if (std::fabs(p[c] - inv[c]) <= t_.setup.thresholds.white) t_.flags[c] |= kFlagLowContrast;
@@ -69,11 +69,11 @@ class ReferenceAccumulator final : public GraycodeAccumulator {
     white_ = white.clone();
     black_ = black.clone();
     for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
-      t_.gray_x[c] = gray_to_binary(t_.gray_x[c]);
-      t_.gray_y[c] = gray_to_binary(t_.gray_y[c]);
+      t_.pixel_x[c] = gray_to_binary(t_.pixel_x[c]);
+      t_.pixel_y[c] = gray_to_binary(t_.pixel_y[c]);
       if (w[c] - b[c] <= t_.setup.thresholds.black) t_.flags[c] |= kFlagShadow;
-      if (t_.gray_x[c] >= static_cast<std::uint32_t>(t_.setup.projector_size.width) ||
-          t_.gray_y[c] >= static_cast<std::uint32_t>(t_.setup.projector_size.height)) {
+      if (t_.pixel_x[c] >= static_cast<std::uint32_t>(t_.setup.projector_size.width) ||
+          t_.pixel_y[c] >= static_cast<std::uint32_t>(t_.setup.projector_size.height)) {
         t_.flags[c] |= kFlagOutOfRange;
       }
       if ((t_.flags[c] & (kFlagShadow | kFlagLowContrast | kFlagOutOfRange)) == 0) t_.flags[c] |= kFlagValid;
@@ -94,7 +94,7 @@ class ReferenceAccumulator final : public GraycodeAccumulator {
     for (std::size_t c = 0; gray_only && c < t_.camera_pixels(); ++c) {
       if ((t_.flags[c] & kFlagValid) == 0 || !(w[c] - b[c] > t_.setup.thresholds.noise)) continue;
       const std::size_t row = c * static_cast<std::size_t>(t_.k());
-      t_.indices[row] = static_cast<std::int32_t>(t_.gray_y[c] * static_cast<std::uint32_t>(width) + t_.gray_x[c]);
+      t_.indices[row] = static_cast<std::int32_t>(t_.pixel_y[c] * static_cast<std::uint32_t>(width) + t_.pixel_x[c]);
       t_.weights[row] = w[c] - b[c];
       t_.direct_energy[c] = w[c] - b[c];
     }

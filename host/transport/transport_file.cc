@@ -587,8 +587,8 @@ void write_transport(const CompressedTransport& transport, const fs::path& file,
     write_dataset(h5, "correspondence", shapes.pairs, transport.correspondence, deflate_level);
     std::vector<std::uint32_t> decoded(2 * transport.camera_pixels());
     for (std::size_t c = 0; c < transport.camera_pixels(); ++c) {
-      decoded[2 * c] = transport.gray_x[c];
-      decoded[2 * c + 1] = transport.gray_y[c];
+      decoded[2 * c] = transport.pixel_x[c];
+      decoded[2 * c + 1] = transport.pixel_y[c];
     }
     write_dataset(h5, "decoded", shapes.pairs, decoded, deflate_level);
     write_dataset(h5, "flags", shapes.pixels, transport.flags, deflate_level);
@@ -620,7 +620,7 @@ CompressedTransport read_transport(const fs::path& file) {
     reader.fail("camera_width x camera_height x entries_per_pixel = " + std::to_string(entries) + " exceeds " +
                 std::to_string(kMaxTransportEntries));
   }
-  // indices and weights per entry; correspondence, decoded, flags, direct_energy, white and gray_x/y per pixel
+  // indices and weights per entry; correspondence, decoded, flags, direct_energy, white and pixel_x/y per pixel
   const double transport_bytes = 8.0 * static_cast<double>(entries) + 33.0 * setup.camera_size.area();
   check_memory(transport_bytes, file.string() + ": its " + std::to_string(setup.camera_size.width) + "x" +
                                     std::to_string(setup.camera_size.height) + " camera pixels of " +
@@ -654,11 +654,11 @@ CompressedTransport read_transport(const fs::path& file) {
   reader.close();
 
   check_values(reader, transport, decoded, shapes);
-  transport.gray_x.resize(transport.camera_pixels());
-  transport.gray_y.resize(transport.camera_pixels());
+  transport.pixel_x.resize(transport.camera_pixels());
+  transport.pixel_y.resize(transport.camera_pixels());
   for (std::size_t c = 0; c < transport.camera_pixels(); ++c) {
-    transport.gray_x[c] = decoded[2 * c];
-    transport.gray_y[c] = decoded[2 * c + 1];
+    transport.pixel_x[c] = decoded[2 * c];
+    transport.pixel_y[c] = decoded[2 * c + 1];
   }
   return transport;
 }

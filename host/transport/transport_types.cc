@@ -35,8 +35,8 @@ CompressedTransport make_empty_decoding(const TransportSetup& setup, CompressedT
   transport.setup = setup;
   const std::size_t n = transport.camera_pixels();
   assign_on_huge_pages(transport.correspondence, 2 * n, std::numeric_limits<float>::quiet_NaN());
-  assign_on_huge_pages(transport.gray_x, n, 0U);
-  assign_on_huge_pages(transport.gray_y, n, 0U);
+  assign_on_huge_pages(transport.pixel_x, n, 0U);
+  assign_on_huge_pages(transport.pixel_y, n, 0U);
   assign_on_huge_pages(transport.flags, n, std::uint8_t{0});
   assign_on_huge_pages(transport.direct_energy, n, 0.0f);
   transport.white.clear();

@@ -108,14 +108,14 @@ std::size_t transport_private_bytes(int entries_per_pixel);
 // response to the projector pixel at full level, black frame subtracted.
 struct CompressedTransport {
   TransportSetup setup;
-  std::vector<std::int32_t> indices;  // N * K projector pixel indices
-  std::vector<float> weights;         // N * K
-  std::vector<float> correspondence;  // N * 2 sub-pixel projector (x, y), pixel centres at integers; NaN if none
-  std::vector<std::uint32_t> gray_x;  // N decoded (integer) projector column; meaningful where kFlagValid
-  std::vector<std::uint32_t> gray_y;  // N decoded projector row
-  std::vector<std::uint8_t> flags;    // N PixelFlag bits
-  std::vector<float> direct_energy;   // N sum of all entries above noise in the window (kept or not)
-  std::vector<float> white;           // N linear white frame (1 = full scale, black level off); empty: unknown
+  std::vector<std::int32_t> indices;   // N * K projector pixel indices
+  std::vector<float> weights;          // N * K
+  std::vector<float> correspondence;   // N * 2 sub-pixel projector (x, y), pixel centres at integers; NaN if none
+  std::vector<std::uint32_t> pixel_x;  // N decoded (integer) projector column; meaningful where kFlagValid
+  std::vector<std::uint32_t> pixel_y;  // N decoded projector row
+  std::vector<std::uint8_t> flags;     // N PixelFlag bits
+  std::vector<float> direct_energy;    // N sum of all entries above noise in the window (kept or not)
+  std::vector<float> white;            // N linear white frame (1 = full scale, black level off); empty: unknown
 
   std::size_t camera_pixels() const { return static_cast<std::size_t>(setup.camera_size.area()); }
   std::size_t projector_pixels() const { return static_cast<std::size_t>(setup.projector_size.area()); }

@@ -76,8 +76,8 @@ py::object transport_array(const py::object& transport, const std::string& name)
   if (name == "weights") return view(t.weights, {height, width, k}, transport);
   if (name == "correspondence") return view(t.correspondence, {height, width, 2}, transport);
   if (name == "flags") return view(t.flags, {height, width}, transport);
-  if (name == "gray_x") return view(t.gray_x, {height, width}, transport);
-  if (name == "gray_y") return view(t.gray_y, {height, width}, transport);
+  if (name == "pixel_x") return view(t.pixel_x, {height, width}, transport);
+  if (name == "pixel_y") return view(t.pixel_y, {height, width}, transport);
   if (name == "direct_energy") return view(t.direct_energy, {height, width}, transport);
   if (name == "white") return t.white.empty() ? py::object(py::none()) : view(t.white, {height, width}, transport);
   throw InputError("no transport array '" + name + "'");

@@ -29,8 +29,8 @@ auto without_gil(const Call& call) {
 }
 
 // A view of one array of the rfrecon.Transport `transport` ("indices", "weights": (H, W, K); "correspondence":
-// (H, W, 2); "flags", "gray_x", "gray_y", "direct_energy", "white": (H, W)) that keeps the transport alive; None for an
-// empty white frame.
+// (H, W, 2); "flags", "pixel_x", "pixel_y", "direct_energy", "white": (H, W)) that keeps the transport alive; None for
+// an empty white frame.
 pybind11::object transport_array(const pybind11::object& transport, const std::string& name);
 
 }  // namespace rfrecon::python

@@ -229,8 +229,16 @@ PYBIND11_MODULE(_rfrecon, module) {
       .def_property_readonly("correspondence",
                              [](py::object self) { return rfrecon::python::transport_array(self, "correspondence"); })
       .def_property_readonly("flags", [](py::object self) { return rfrecon::python::transport_array(self, "flags"); })
-      .def_property_readonly("gray_x", [](py::object self) { return rfrecon::python::transport_array(self, "gray_x"); })
-      .def_property_readonly("gray_y", [](py::object self) { return rfrecon::python::transport_array(self, "gray_y"); })
+      .def_property_readonly("pixel_x",
+                             [](py::object self) { return rfrecon::python::transport_array(self, "pixel_x"); })
+      .def_property_readonly("pixel_y",
+                             [](py::object self) { return rfrecon::python::transport_array(self, "pixel_y"); })
+      // The names of these two before 2026-12 (they held the Gray code's pixel before other families): kept for
+      // scripts that use them.
+      .def_property_readonly("gray_x",
+                             [](py::object self) { return rfrecon::python::transport_array(self, "pixel_x"); })
+      .def_property_readonly("gray_y",
+                             [](py::object self) { return rfrecon::python::transport_array(self, "pixel_y"); })
       .def_property_readonly("direct_energy",
                              [](py::object self) { return rfrecon::python::transport_array(self, "direct_energy"); })
       .def_property_readonly("white", [](py::object self) { return rfrecon::python::transport_array(self, "white"); });

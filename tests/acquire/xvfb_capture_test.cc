@@ -78,11 +78,11 @@ std::string screen_camera(const std::string& display) {
 double identity_share(const transport::CompressedTransport& T) {
   const std::size_t width = static_cast<std::size_t>(T.setup.camera_size.width);
   std::size_t identity = 0;
-  for (std::size_t i = 0; i < T.gray_x.size(); ++i) {
+  for (std::size_t i = 0; i < T.pixel_x.size(); ++i) {
     const bool valid = (T.flags[i] & transport::kFlagValid) != 0;
-    if (valid && T.gray_x[i] == i % width && T.gray_y[i] == i / width) ++identity;
+    if (valid && T.pixel_x[i] == i % width && T.pixel_y[i] == i / width) ++identity;
   }
-  return static_cast<double>(identity) / static_cast<double>(T.gray_x.size());
+  return static_cast<double>(identity) / static_cast<double>(T.pixel_x.size());
 }
 
 class XvfbCapture : public ::testing::Test {

@@ -202,8 +202,8 @@ TEST(CaptureChecksTest, TenAndTwelveBitDataInSixteenBitFilesDecodeUnderBothLayou
     const auto from_manifest = decode(dir.path(), manifest);
     const auto from_opencv = decode(opencv_dir.path(), opencv);
     EXPECT_GT(decoded(from_manifest), static_cast<long>(from_manifest.transport.camera_pixels() / 4));
-    EXPECT_EQ(from_opencv.transport.gray_x, from_manifest.transport.gray_x);
-    EXPECT_EQ(from_opencv.transport.gray_y, from_manifest.transport.gray_y);
+    EXPECT_EQ(from_opencv.transport.pixel_x, from_manifest.transport.pixel_x);
+    EXPECT_EQ(from_opencv.transport.pixel_y, from_manifest.transport.pixel_y);
     EXPECT_EQ(from_opencv.transport.flags, from_manifest.transport.flags);
     EXPECT_TRUE(from_opencv.checks.findings.empty()) << findings_text(from_opencv.checks);
 

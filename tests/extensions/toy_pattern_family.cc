@@ -107,7 +107,7 @@ class BinaryAccumulator : public rfrecon::TransportAccumulator {
     const bool columns = step.args[0] == 0;
     const int shift =
         bits_for(columns ? t_.setup.projector_size.width : t_.setup.projector_size.height) - 1 - step.args[1];
-    auto& code = columns ? t_.gray_x : t_.gray_y;
+    auto& code = columns ? t_.pixel_x : t_.pixel_y;
     for (std::size_t c = 0; c < t_.camera_pixels(); ++c) {
       const float mid = 0.5f * (white.ptr<float>()[c] + black.ptr<float>()[c]);
       if (frame.ptr<float>()[c] > mid) code[c] |= 1u << shift;
@@ -120,15 +120,15 @@ class BinaryAccumulator : public rfrecon::TransportAccumulator {
       const float lit = white_.ptr<float>()[c] - black_.ptr<float>()[c];
       if (!(lit > t_.setup.thresholds.black)) {
         t_.flags[c] = transport::kFlagShadow;
-      } else if (t_.gray_x[c] >= static_cast<unsigned>(projector.width) ||
-                 t_.gray_y[c] >= static_cast<unsigned>(projector.height)) {
+      } else if (t_.pixel_x[c] >= static_cast<unsigned>(projector.width) ||
+                 t_.pixel_y[c] >= static_cast<unsigned>(projector.height)) {
         t_.flags[c] = transport::kFlagOutOfRange;
       } else {
         t_.flags[c] = transport::kFlagValid;
-        t_.correspondence[2 * c] = static_cast<float>(t_.gray_x[c]);
-        t_.correspondence[2 * c + 1] = static_cast<float>(t_.gray_y[c]);
+        t_.correspondence[2 * c] = static_cast<float>(t_.pixel_x[c]);
+        t_.correspondence[2 * c + 1] = static_cast<float>(t_.pixel_y[c]);
         const std::size_t row = c * static_cast<std::size_t>(t_.k());
-        t_.indices[row] = static_cast<int>(t_.gray_y[c]) * projector.width + static_cast<int>(t_.gray_x[c]);
+        t_.indices[row] = static_cast<int>(t_.pixel_y[c]) * projector.width + static_cast<int>(t_.pixel_x[c]);
         t_.weights[row] = lit;
         t_.direct_energy[c] = lit;
       }

@@ -155,8 +155,8 @@ class HlsAccumulator final : public GraycodeAccumulator {
     white_ = white;
     black_ = black;
     gray_finalize_single(white.ptr<float>(), black.ptr<float>(), t_.setup.thresholds.black,
-                         t_.setup.projector_size.width, t_.setup.projector_size.height, t_.gray_x.data(),
-                         t_.gray_y.data(), t_.flags.data(), n_);
+                         t_.setup.projector_size.width, t_.setup.projector_size.height, t_.pixel_x.data(),
+                         t_.pixel_y.data(), t_.flags.data(), n_);
   }
 
   void add_dot_frame(int offset_x, int offset_y, const cv::Mat& frame) override {
@@ -169,8 +169,8 @@ class HlsAccumulator final : public GraycodeAccumulator {
   CompressedTransport finish() override {
     if (pending_ > 0) compress_batch();
     finalize_single(white_.ptr<float>(), black_.ptr<float>(), t_.setup.dot_spacing > 0 ? 1 : 0,
-                    t_.setup.projector_size.width, t_.setup.thresholds.noise, t_.flags.data(), t_.gray_x.data(),
-                    t_.gray_y.data(), t_.indices.data(), t_.weights.data(), t_.direct_energy.data(),
+                    t_.setup.projector_size.width, t_.setup.thresholds.noise, t_.flags.data(), t_.pixel_x.data(),
+                    t_.pixel_y.data(), t_.indices.data(), t_.weights.data(), t_.direct_energy.data(),
                     t_.correspondence.data(), n_);
     return std::move(t_);
   }
@@ -178,7 +178,7 @@ class HlsAccumulator final : public GraycodeAccumulator {
  private:
   void decode_batch() {
     gray_pairs_single(batch_.data(), static_cast<int>(gray_pending_), pairs_.data(), t_.setup.thresholds.white,
-                      t_.gray_x.data(), t_.gray_y.data(), t_.flags.data(), n_);
+                      t_.pixel_x.data(), t_.pixel_y.data(), t_.flags.data(), n_);
     gray_pending_ = 0;
     pairs_.fill(0);
   }
@@ -186,7 +186,7 @@ class HlsAccumulator final : public GraycodeAccumulator {
   void compress_batch() {
     dot_frames_single(batch_.data(), static_cast<int>(pending_), offsets_.data(), t_.setup.dot_spacing,
                       t_.setup.projector_size.width, t_.setup.projector_size.height, t_.setup.thresholds.noise,
-                      black_.ptr<float>(), t_.flags.data(), t_.gray_x.data(), t_.gray_y.data(), t_.indices.data(),
+                      black_.ptr<float>(), t_.flags.data(), t_.pixel_x.data(), t_.pixel_y.data(), t_.indices.data(),
                       t_.weights.data(), t_.direct_energy.data(), n_);
     pending_ = 0;
     offsets_.fill(0);
@@ -285,8 +285,8 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
     if (t_.setup.dot_spacing > 0) {  // the rows' centroids to scratch: the phases' correspondences stay
       std::vector<float> centroids(2 * static_cast<std::size_t>(n_));
       finalize_single(white_.ptr<float>(), black_.ptr<float>(), 1, t_.setup.projector_size.width,
-                      t_.setup.thresholds.noise, t_.flags.data(), t_.gray_x.data(), t_.gray_y.data(), t_.indices.data(),
-                      t_.weights.data(), t_.direct_energy.data(), centroids.data(), n_);
+                      t_.setup.thresholds.noise, t_.flags.data(), t_.pixel_x.data(), t_.pixel_y.data(),
+                      t_.indices.data(), t_.weights.data(), t_.direct_energy.data(), centroids.data(), n_);
     }
     return std::move(t_);
   }
@@ -303,7 +303,7 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
     phase_finalize_single(white_.ptr<float>(), black_.ptr<float>(), t_.setup.thresholds.black,
                           t_.setup.thresholds.white, steps_, static_cast<float>(periods_[0].front()),
                           static_cast<float>(periods_[1].front()), order_unit_, t_.setup.projector_size.width,
-                          t_.setup.projector_size.height, t_.k(), t_.gray_x.data(), t_.gray_y.data(), sums_.data(),
+                          t_.setup.projector_size.height, t_.k(), t_.pixel_x.data(), t_.pixel_y.data(), sums_.data(),
                           estimates_.data(), t_.flags.data(), t_.indices.data(), t_.weights.data(),
                           t_.direct_energy.data(), t_.correspondence.data(), n_);
     if (t_.setup.dot_spacing == 0) return;
@@ -329,7 +329,7 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
   void add_dots() {
     dot_frames_single(batch_.data(), static_cast<int>(dots_pending_), offsets_.data(), t_.setup.dot_spacing,
                       t_.setup.projector_size.width, t_.setup.projector_size.height, t_.setup.thresholds.noise,
-                      black_.ptr<float>(), t_.flags.data(), t_.gray_x.data(), t_.gray_y.data(), t_.indices.data(),
+                      black_.ptr<float>(), t_.flags.data(), t_.pixel_x.data(), t_.pixel_y.data(), t_.indices.data(),
                       t_.weights.data(), t_.direct_energy.data(), n_);
     dots_pending_ = 0;
     offsets_.fill(0);
@@ -343,7 +343,7 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
 
   void add_pairs() {
     gray_pairs_single(batch_.data(), static_cast<int>(pairs_pending_), pairs_.data(), t_.setup.thresholds.white,
-                      t_.gray_x.data(), t_.gray_y.data(), t_.flags.data(), n_);
+                      t_.pixel_x.data(), t_.pixel_y.data(), t_.flags.data(), n_);
     pairs_pending_ = 0;
     pairs_.fill(0);
   }

@@ -83,7 +83,7 @@ def test_screen_capture_decodes_to_the_identity_map(session, tmp_path):
     assert manifest.bit_depth == 10 and manifest.black_level == 40.0 and len(manifest) == 2 + 2 * (6 + 6)
     transport, _ = session.transport(rfrecon.Capture.from_directory(tmp_path / "scan"))
     ys, xs = np.mgrid[0:SIZE[1], 0:SIZE[0]]
-    assert np.array_equal(transport.gray_x, xs) and np.array_equal(transport.gray_y, ys)
+    assert np.array_equal(transport.pixel_x, xs) and np.array_equal(transport.pixel_y, ys)
 
 
 def test_repeated_frame_is_grabbed_again(session, tmp_path):

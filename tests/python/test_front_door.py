@@ -38,8 +38,10 @@ def test_transport_from_memory_equals_the_tools_file(cli, plane, transport, tmp_
                    capture_output=True)
     from_file = rfrecon.read_transport(tmp_path / "T.h5")
     assert transport.camera_size == (64, 48) and transport.projector_size == (64, 48)
-    for name in ["indices", "weights", "correspondence", "gray_x", "gray_y", "flags", "direct_energy", "white"]:
+    for name in ["indices", "weights", "correspondence", "pixel_x", "pixel_y", "flags", "direct_energy", "white"]:
         np.testing.assert_array_equal(getattr(transport, name), getattr(from_file, name), err_msg=name)
+    np.testing.assert_array_equal(transport.gray_x, transport.pixel_x)  # the former names, kept
+    np.testing.assert_array_equal(transport.gray_y, transport.pixel_y)
 
 
 def test_frames_from_a_callback_equal_frames_in_memory(session, capture, transport):

@@ -35,8 +35,8 @@ void expect_identical(const transport::CompressedTransport& got, const transport
   expect_identical(got.indices, expected.indices, "indices");
   expect_identical(got.weights, expected.weights, "weights");
   expect_identical(got.correspondence, expected.correspondence, "correspondence");
-  expect_identical(got.gray_x, expected.gray_x, "gray_x");
-  expect_identical(got.gray_y, expected.gray_y, "gray_y");
+  expect_identical(got.pixel_x, expected.pixel_x, "pixel_x");
+  expect_identical(got.pixel_y, expected.pixel_y, "pixel_y");
   expect_identical(got.flags, expected.flags, "flags");
   expect_identical(got.direct_energy, expected.direct_energy, "direct_energy");
 }

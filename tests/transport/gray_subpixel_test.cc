@@ -123,7 +123,7 @@ Refined refine(const Capture& capture) {
       if (!both) continue;
       const cv::Vec2d truth = capture.truth.at<cv::Vec2d>(v, u);
       sum += (x - truth[0]) * (x - truth[0]) + (y - truth[1]) * (y - truth[1]);
-      const double ix = r.transport.gray_x[c] - truth[0], iy = r.transport.gray_y[c] - truth[1];
+      const double ix = r.transport.pixel_x[c] - truth[0], iy = r.transport.pixel_y[c] - truth[1];
       integer_sum += ix * ix + iy * iy;
       ++count;
     }
@@ -294,7 +294,7 @@ TEST(GrayDecisionTest, OnePixelPerOutcome) {
   }
   const cv::Mat mean = 0.5 * (white + black);
   decision.add_gray_pair(GrayAxis::kRows, gray_bit_mask(setup, GrayAxis::kRows, 0), mean - 0.1, mean + 0.1);
-  for (int c = 0; c < kPixels; ++c) transport.gray_x[static_cast<std::size_t>(c)] = built[c].column;
+  for (int c = 0; c < kPixels; ++c) transport.pixel_x[static_cast<std::size_t>(c)] = built[c].column;
 
   const GrayDecisionCounts counts = decision.decide(transport);
   EXPECT_EQ(counts.lit, 9u);

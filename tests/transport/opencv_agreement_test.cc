@@ -51,7 +51,7 @@ TEST(OpencvAgreementTest, SameValidPixelsAndCoordinatesAsGrayCodePattern) {
       opencv_valid += valid ? 1 : 0;
       disagreements += valid != our_valid ? 1 : 0;
       if (valid && our_valid) {
-        disagreements += projector != cv::Point(static_cast<int>(ours.gray_x[c]), static_cast<int>(ours.gray_y[c]));
+        disagreements += projector != cv::Point(static_cast<int>(ours.pixel_x[c]), static_cast<int>(ours.pixel_y[c]));
       }
     }
   }

@@ -36,14 +36,14 @@ inline void expect_same_phase_transport(const CompressedTransport& got, const Co
       EXPECT_TRUE(std::isnan(u[0]) && std::isnan(u[1])) << c;
     }
     if (decoded && (at_pixel_edge(u[0], e[0]) || at_pixel_edge(u[1], e[1]))) continue;
-    if (!decoded && (got.gray_x[c] != expected.gray_x[c] || got.gray_y[c] != expected.gray_y[c])) {
+    if (!decoded && (got.pixel_x[c] != expected.pixel_x[c] || got.pixel_y[c] != expected.pixel_y[c])) {
       // A low-contrast pixel's projector pixel, rounded from the same phase in float and in double, at a pixel edge.
-      EXPECT_LE(std::abs(static_cast<long>(got.gray_x[c]) - static_cast<long>(expected.gray_x[c])), 1) << c;
-      EXPECT_LE(std::abs(static_cast<long>(got.gray_y[c]) - static_cast<long>(expected.gray_y[c])), 1) << c;
+      EXPECT_LE(std::abs(static_cast<long>(got.pixel_x[c]) - static_cast<long>(expected.pixel_x[c])), 1) << c;
+      EXPECT_LE(std::abs(static_cast<long>(got.pixel_y[c]) - static_cast<long>(expected.pixel_y[c])), 1) << c;
       continue;
     }
-    EXPECT_EQ(got.gray_x[c], expected.gray_x[c]) << c;
-    EXPECT_EQ(got.gray_y[c], expected.gray_y[c]) << c;
+    EXPECT_EQ(got.pixel_x[c], expected.pixel_x[c]) << c;
+    EXPECT_EQ(got.pixel_y[c], expected.pixel_y[c]) << c;
     EXPECT_EQ(got.direct_energy[c], expected.direct_energy[c]) << c;
     for (std::size_t j = 0; j < k; ++j) {
       EXPECT_EQ(got.indices[c * k + j], expected.indices[c * k + j]) << c << " entry " << j;

@@ -17,8 +17,8 @@ inline constexpr float kCorrespondenceTolerancePx = 1e-5f;
 inline void expect_same_transport(const CompressedTransport& got, const CompressedTransport& expected) {
   EXPECT_EQ(got.indices, expected.indices);
   EXPECT_EQ(got.weights, expected.weights);
-  EXPECT_EQ(got.gray_x, expected.gray_x);
-  EXPECT_EQ(got.gray_y, expected.gray_y);
+  EXPECT_EQ(got.pixel_x, expected.pixel_x);
+  EXPECT_EQ(got.pixel_y, expected.pixel_y);
   EXPECT_EQ(got.flags, expected.flags);
   EXPECT_EQ(got.direct_energy, expected.direct_energy);
   ASSERT_EQ(got.correspondence.size(), expected.correspondence.size());

@@ -54,8 +54,8 @@ TEST(SimTransportTest, DecodedCorrespondencesMatchTheRigsTruth) {
     ++lit;
     if ((transport.flags[c] & kFlagValid) == 0) continue;
     ++valid;
-    exact += transport.gray_x[c] == static_cast<std::uint32_t>(std::lround(xy[0])) &&
-                     transport.gray_y[c] == static_cast<std::uint32_t>(std::lround(xy[1]))
+    exact += transport.pixel_x[c] == static_cast<std::uint32_t>(std::lround(xy[0])) &&
+                     transport.pixel_y[c] == static_cast<std::uint32_t>(std::lround(xy[1]))
                  ? 1
                  : 0;
   }

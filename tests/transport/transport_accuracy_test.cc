@@ -55,8 +55,8 @@ TEST(TransportAccuracyTest, GrayCodeDecodesLitPixelsToTheTrueProjectorPixel) {
     const bool is_valid = (transport.flags[c] & kFlagValid) != 0;
     valid += is_valid ? 1 : 0;
     // Pixel centres at integer coordinates: the projector pixel containing the true point is its rounding.
-    exact += is_valid && transport.gray_x[c] == static_cast<std::uint32_t>(std::lround(truth[0])) &&
-                     transport.gray_y[c] == static_cast<std::uint32_t>(std::lround(truth[1]))
+    exact += is_valid && transport.pixel_x[c] == static_cast<std::uint32_t>(std::lround(truth[0])) &&
+                     transport.pixel_y[c] == static_cast<std::uint32_t>(std::lround(truth[1]))
                  ? 1
                  : 0;
   }

@@ -184,7 +184,7 @@ TEST_F(TransportCliTest, OpencvLayoutWithoutManifestDecodesLikeTheManifest) {
   for (std::size_t c = 0; c < transport.camera_pixels(); ++c) {
     if ((transport.flags[c] & reference.flags[c] & kFlagValid) == 0) continue;
     ++both;
-    same += transport.gray_x[c] == reference.gray_x[c] && transport.gray_y[c] == reference.gray_y[c] ? 1 : 0;
+    same += transport.pixel_x[c] == reference.pixel_x[c] && transport.pixel_y[c] == reference.pixel_y[c] ? 1 : 0;
   }
   EXPECT_GT(both, transport.camera_pixels() / 2);
   EXPECT_EQ(same, both);
@@ -194,8 +194,8 @@ TEST_F(TransportCliTest, OpencvLayoutWithoutManifestDecodesLikeTheManifest) {
     const cv::Vec2f truth = scene_.correspondence.at<cv::Vec2f>(static_cast<int>(c));
     if ((transport.flags[c] & kFlagValid) == 0 || std::isnan(truth[0])) continue;
     ++valid;
-    right += transport.gray_x[c] == static_cast<std::uint32_t>(std::floor(truth[0] + 0.5f)) &&
-                     transport.gray_y[c] == static_cast<std::uint32_t>(std::floor(truth[1] + 0.5f))
+    right += transport.pixel_x[c] == static_cast<std::uint32_t>(std::floor(truth[0] + 0.5f)) &&
+                     transport.pixel_y[c] == static_cast<std::uint32_t>(std::floor(truth[1] + 0.5f))
                  ? 1
                  : 0;
   }
@@ -407,7 +407,7 @@ TEST_F(TransportCliTest, PatternsDecodeBackToTheirProjectorCoordinates) {
   const auto manifest = capture::read_manifest(out);
   EXPECT_EQ(manifest.frames.size(), 2u + 2u * (5u + 4u) + 16u);
   // Decoding the written Gray images as a camera that sees the projector pixel for pixel gives every coordinate.
-  std::vector<std::uint32_t> gray_x(std::size_t{20} * 9, 0), gray_y(std::size_t{20} * 9, 0);
+  std::vector<std::uint32_t> pixel_x(std::size_t{20} * 9, 0), pixel_y(std::size_t{20} * 9, 0);
   for (const auto& frame : manifest.frames) {
     if (frame.pattern.inverse || (frame.pattern.kind != capture::pattern_kind::kGrayColumn &&
                                   frame.pattern.kind != capture::pattern_kind::kGrayRow)) {
@@ -417,14 +417,14 @@ TEST_F(TransportCliTest, PatternsDecodeBackToTheirProjectorCoordinates) {
     const cv::Mat image = cv::imread((out / frame.file).string(), cv::IMREAD_GRAYSCALE);
     const int bits = columns ? 5 : 4;
     for (int i = 0; i < 20 * 9; ++i) {
-      if (image.ptr<unsigned char>()[i] > 127) (columns ? gray_x : gray_y)[i] |= 1u << (bits - 1 - frame.pattern.bit);
+      if (image.ptr<unsigned char>()[i] > 127) (columns ? pixel_x : pixel_y)[i] |= 1u << (bits - 1 - frame.pattern.bit);
     }
   }
   for (int y = 0; y < 9; ++y) {
     for (int x = 0; x < 20; ++x) {
       std::uint32_t bx = 0, by = 0;
-      for (std::uint32_t g = gray_x[y * 20 + x]; g != 0; g >>= 1) bx ^= g;
-      for (std::uint32_t g = gray_y[y * 20 + x]; g != 0; g >>= 1) by ^= g;
+      for (std::uint32_t g = pixel_x[y * 20 + x]; g != 0; g >>= 1) bx ^= g;
+      for (std::uint32_t g = pixel_y[y * 20 + x]; g != 0; g >>= 1) by ^= g;
       EXPECT_EQ(bx, static_cast<std::uint32_t>(x));
       EXPECT_EQ(by, static_cast<std::uint32_t>(y));
     }

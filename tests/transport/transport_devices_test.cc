@@ -115,8 +115,8 @@ TEST(TransportDevicesTest, AnEarlierTransportsMemoryIsReusedAndTheResultIsTheSam
     std::fill(earlier.indices.begin(), earlier.indices.end(), 7);
     std::fill(earlier.weights.begin(), earlier.weights.end(), 0.5f);
     std::fill(earlier.correspondence.begin(), earlier.correspondence.end(), 3.0f);
-    std::fill(earlier.gray_x.begin(), earlier.gray_x.end(), 5U);
-    std::fill(earlier.gray_y.begin(), earlier.gray_y.end(), 6U);
+    std::fill(earlier.pixel_x.begin(), earlier.pixel_x.end(), 5U);
+    std::fill(earlier.pixel_y.begin(), earlier.pixel_y.end(), 6U);
     std::fill(earlier.flags.begin(), earlier.flags.end(), std::uint8_t{0xFF});
     std::fill(earlier.direct_energy.begin(), earlier.direct_energy.end(), 9.0f);
     const std::int32_t* indices_memory = earlier.indices.data();

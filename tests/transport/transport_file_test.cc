@@ -118,8 +118,8 @@ TEST_F(TransportFileTest, RoundTripPreservesEveryArrayAndAttribute) {
   EXPECT_TRUE(same_bits(read.indices, written.indices));
   EXPECT_TRUE(same_bits(read.weights, written.weights));
   EXPECT_TRUE(same_bits(read.correspondence, written.correspondence));
-  EXPECT_TRUE(same_bits(read.gray_x, written.gray_x));
-  EXPECT_TRUE(same_bits(read.gray_y, written.gray_y));
+  EXPECT_TRUE(same_bits(read.pixel_x, written.pixel_x));
+  EXPECT_TRUE(same_bits(read.pixel_y, written.pixel_y));
   EXPECT_TRUE(same_bits(read.flags, written.flags));
   EXPECT_TRUE(same_bits(read.direct_energy, written.direct_energy));
 }
@@ -315,7 +315,7 @@ TEST_F(TransportFileTest, FlagsDecodedCorrespondenceAndEnergyOutOfRangeFail) {
        "dataset 'flags' element (4, 10) is 3"},
       {[&](CompressedTransport& t) {
          t.flags[pixel] = kFlagValid;
-         t.gray_y[pixel] = 12;
+         t.pixel_y[pixel] = 12;
        },
        "dataset 'decoded' element (4, 10, 1) is 12"},
       {[&](CompressedTransport& t) { t.correspondence[2 * pixel] = std::numeric_limits<float>::infinity(); },

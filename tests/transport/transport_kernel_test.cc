@@ -212,8 +212,8 @@ TEST_F(TransportKernelTest, GrayPairsOverAFullAndAPartialBatchMatchReference) {
       SCOPED_TRACE(cl::describe(device.info()) + (entry == KernelEntry::kNdRange ? " ndrange" : " single"));
       auto accumulator = make_device_accumulator(setup, device, programs_, entry);
       const auto got = testing::feed_all(*accumulator, capture->sequence, linear);
-      EXPECT_EQ(got.gray_x, expected.gray_x);
-      EXPECT_EQ(got.gray_y, expected.gray_y);
+      EXPECT_EQ(got.pixel_x, expected.pixel_x);
+      EXPECT_EQ(got.pixel_y, expected.pixel_y);
       EXPECT_EQ(got.flags, expected.flags);
       expect_same_transport(got, expected);
     }
