@@ -22,6 +22,9 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
+// The fraction of a turn in [0, 1) of v turns.
+double fraction_of_turn(double v) { return v - std::floor(v); }
+
 bool on_columns(const capture::Pattern& pattern) {
   return pattern.kind == capture::pattern_kind::kOrderColumn || pattern.kind == capture::pattern_kind::kPhaseColumn;
 }
@@ -109,7 +112,8 @@ class PhaseAccumulator final : public TransportAccumulator {
         contrasted = contrasted && low_contrast_[axis][c] == 0 && phase.modulation > t_.setup.thresholds.white;
         const double period = periods_[axis].front();
         if (!fringes_.empty()) {
-          const double turns[3] = {turns_of(phase.theta), turns_[axis][2 * c], turns_[axis][2 * c + 1]};
+          const double turns[3] = {fraction_of_turn(phase.theta / kTwoPi), turns_[axis][2 * c],
+                                   turns_[axis][2 * c + 1]};
           estimate_[axis][c] = heterodyne_estimate(turns, fringes_, axis == 0 ? projector.width : projector.height);
         }
         u[axis] = order_unit_ > 0 ? unwrap_phase(phase.theta, static_cast<int>(gray_to_binary(order_[axis][c])), period,
@@ -154,18 +158,13 @@ class PhaseAccumulator final : public TransportAccumulator {
       const Phase phase = phase_at(axis, c);
       if (!(phase.modulation > t_.setup.thresholds.white)) low_contrast_[axis][c] = 1;
       if (!fringes_.empty()) {
-        turns_[axis][2 * c + static_cast<std::size_t>(level - 1)] = turns_of(phase.theta);
+        turns_[axis][2 * c + static_cast<std::size_t>(level - 1)] = fraction_of_turn(phase.theta / kTwoPi);
       } else {
         const double estimate = coarsest ? 0.5 * (n - 1) : estimate_[axis][c];
         estimate_[axis][c] = unwrap_near(phase.theta, estimate, periods_[axis].at(level));
       }
       sin_sum_[axis][c] = cos_sum_[axis][c] = 0.0f;
     }
-  }
-
-  static double turns_of(double theta) {
-    const double turns = theta / kTwoPi;
-    return turns - std::floor(turns);
   }
 
   cv::Mat linear(const cv::Mat& frame) const {
@@ -333,10 +332,9 @@ double unwrap_phase(double theta, int order, double period, int unit) {
 }
 
 double heterodyne_estimate(const double* turns, const std::vector<int>& fringes, double axis_pixels) {
-  const auto fraction = [](double v) { return v - std::floor(v); };
-  const double beat = fraction(turns[0] - turns[1]);
+  const double beat = fraction_of_turn(turns[0] - turns[1]);
   if (fringes.size() == 2) return beat * axis_pixels;
-  const double beat_of_beats = fraction(beat - fraction(turns[1] - turns[2]));
+  const double beat_of_beats = fraction_of_turn(beat - fraction_of_turn(turns[1] - turns[2]));
   return unwrap_near(kTwoPi * beat, beat_of_beats * axis_pixels, axis_pixels / (fringes[0] - fringes[1]));
 }
 
