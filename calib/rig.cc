@@ -1,9 +1,14 @@
 // Reading, writing and completing the stereo rig file.
 #include "calib/rig.h"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <tuple>
+#include <vector>
+
+#include <opencv2/calib3d.hpp>
 
 #include "calib/rectification.h"
 #include "host/core/atomic_file.h"
@@ -85,16 +90,20 @@ cv::Mat as_double(const cv::Mat& m) {
 }
 
 constexpr long long kMaxMatrixElements = 16;
+// The parameter covariance of the largest distortion model: G = 2 (4 + 14) + 6.
+constexpr long long kMaxCovarianceElements = 42LL * 42;
 
-cv::Mat read_mat(const cv::FileStorage& fs, const char* key, const std::string& file) {
+// Rig matrices are at most 4x4 (or 1x14 coefficients), the covariance G x G: a larger declared shape is refused before
+// it is allocated.
+cv::Mat read_mat(const cv::FileStorage& fs, const char* key, const std::string& file,
+                 long long max_elements = kMaxMatrixElements) {
   const cv::FileNode node = fs[key];
   if (node.empty()) throw InputError(file + ": missing key '" + key + "'");
-  // Rig matrices are at most 4x4 (or 1x14 coefficients): a larger declared shape is refused before it is allocated.
   if (!node.isMap() || !node["rows"].isInt() || !node["cols"].isInt() || static_cast<int>(node["rows"]) < 1 ||
       static_cast<int>(node["cols"]) < 1 ||
-      static_cast<long long>(static_cast<int>(node["rows"])) * static_cast<int>(node["cols"]) > kMaxMatrixElements) {
+      static_cast<long long>(static_cast<int>(node["rows"])) * static_cast<int>(node["cols"]) > max_elements) {
     throw InputError(file + ": key '" + key + "' is not an OpenCV matrix (!!opencv-matrix) of at most " +
-                     std::to_string(kMaxMatrixElements) + " elements");
+                     std::to_string(max_elements) + " elements");
   }
   cv::Mat m;
   try {
@@ -163,6 +172,7 @@ void write_rig(const StereoRig& rig, const fs::path& file) {
     fs << "projector_intrinsics_std" << u.projector_intrinsics << "projector_dist_coeffs_std"
        << u.projector_dist_coeffs;
     fs << "om_std" << u.proj_from_cam_rotation_vector << "T_std" << u.proj_from_cam_translation_mm;
+    if (!u.parameter_covariance.empty()) fs << "parameter_covariance" << u.parameter_covariance;
   }
   fs << "board"
      << "{"
@@ -207,6 +217,12 @@ StereoRig read_rig_file(const fs::path& file) {
       *m = read_mat(fs, key, name);
       if (cols > 0) check_shape(*m, 1, cols, key, name);
     }
+    if (!fs["parameter_covariance"].empty()) {
+      u.parameter_covariance = read_mat(fs, "parameter_covariance", name, kMaxCovarianceElements);
+      const int globals = rig_parameter_count(rig);
+      check_shape(u.parameter_covariance, globals, globals, "parameter_covariance", name);
+      check_finite(u.parameter_covariance, "parameter_covariance", name);
+    }
   }
   const cv::FileNode board = fs["board"];
   if (!board.empty()) {
@@ -218,6 +234,41 @@ StereoRig read_rig_file(const fs::path& file) {
   return complete_rig(std::move(rig), name);
 }
 }  // namespace
+
+int rig_parameter_count(const StereoRig& rig) { return 2 * (4 + static_cast<int>(rig.dist_coeffs.total())) + 6; }
+
+std::vector<double> rig_parameters(const StereoRig& rig) {
+  const int dist_size = static_cast<int>(rig.dist_coeffs.total());
+  std::vector<double> p;
+  for (const auto& [matrix, dist] : {std::pair{&rig.camera_matrix, &rig.dist_coeffs},
+                                     std::pair{&rig.projector_matrix, &rig.projector_dist_coeffs}}) {
+    p.insert(p.end(),
+             {matrix->at<double>(0, 0), matrix->at<double>(1, 1), matrix->at<double>(0, 2), matrix->at<double>(1, 2)});
+    for (int i = 0; i < dist_size; ++i) p.push_back(i < static_cast<int>(dist->total()) ? dist->at<double>(i) : 0.0);
+  }
+  cv::Vec3d om;
+  cv::Rodrigues(rig.proj_from_cam_rotation, om);
+  p.insert(p.end(), {om[0], om[1], om[2]});
+  for (int i = 0; i < 3; ++i) p.push_back(rig.proj_from_cam_translation_mm.at<double>(i));
+  return p;
+}
+
+void set_rig_parameters(StereoRig& rig, const std::vector<double>& p) {
+  const int g = rig_parameter_count(rig), block = (g - 6) / 2;
+  if (static_cast<int>(p.size()) != g) {
+    throw std::invalid_argument("set_rig_parameters: " + std::to_string(p.size()) + " parameters for a rig of " +
+                                std::to_string(g));
+  }
+  for (auto [matrix, dist, at] : {std::tuple{&rig.camera_matrix, &rig.dist_coeffs, 0},
+                                  std::tuple{&rig.projector_matrix, &rig.projector_dist_coeffs, block}}) {
+    *matrix = (cv::Mat_<double>(3, 3) << p[at], 0, p[at + 2], 0, p[at + 1], p[at + 3], 0, 0, 1);
+    *dist = cv::Mat(1, block - 4, CV_64F);
+    std::copy(p.begin() + at + 4, p.begin() + at + block, dist->begin<double>());
+  }
+  const double* pose = p.data() + 2 * static_cast<std::size_t>(block);  // rotation vector, then T
+  cv::Rodrigues(cv::Vec3d(pose[0], pose[1], pose[2]), rig.proj_from_cam_rotation);
+  rig.proj_from_cam_translation_mm = (cv::Mat_<double>(3, 1) << pose[3], pose[4], pose[5]);
+}
 
 StereoRig complete_rig(StereoRig rig, const std::string& where) {
   check_measured(rig, where);

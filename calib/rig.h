@@ -26,6 +26,10 @@ struct RigUncertainty {
   cv::Mat projector_dist_coeffs;
   cv::Mat proj_from_cam_rotation_vector;  // 1x3: cv::Rodrigues of proj_from_cam_rotation, rad (rig.yaml: om_std)
   cv::Mat proj_from_cam_translation_mm;   // 1x3, mm (rig.yaml: T_std)
+  // The joint covariance of all of them (rig.yaml: parameter_covariance), G x G with G = 2 (4 + N) + 6 in the order
+  // camera fx fy cx cy and its N distortion coefficients, the projector's the same, om (3), T (3); rows and columns of
+  // coefficients held fixed are 0. Empty in a rig written before it was kept: only the diagonal is known then.
+  cv::Mat parameter_covariance;
   bool empty() const { return camera_intrinsics.empty(); }
 };
 
@@ -57,6 +61,14 @@ struct StereoRig {
   RigUncertainty uncertainty;
   BoardSpec board;
 };
+
+// G, the size of RigUncertainty::parameter_covariance for this rig's distortion model: 2 (4 + N) + 6 with N the
+// camera's distortion coefficients (the projector has as many).
+int rig_parameter_count(const StereoRig& rig);
+// The rig's G parameters in that order, and the rig with them set (intrinsics, distortion, R from its rotation vector,
+// T; the derived keys are left to compute_stereo_geometry). std::invalid_argument when there are not G.
+std::vector<double> rig_parameters(const StereoRig& rig);
+void set_rig_parameters(StereoRig& rig, const std::vector<double>& parameters);
 
 // rig.yaml's `format` and `version` keys; files without them (version 1) are still read.
 inline constexpr const char* kRigFormat = "rfrecon-rig";

@@ -72,6 +72,23 @@ cv::Mat std_block(const std::vector<int>& columns, const cv::Mat& variances, int
   }
   return out;
 }
+
+// The covariance of the global parameters [0, globals) of the full vector, 0 in the rows and columns of those not
+// estimated, from the unit-diagonal inverse `scaled_inverse`; empty when that is (a singular problem).
+cv::Mat global_covariance(const JointColumns& columns, const cv::Mat& scaled_inverse, const cv::Mat& scale,
+                          double sigma_px, int globals) {
+  if (scaled_inverse.empty()) return {};
+  cv::Mat out = cv::Mat::zeros(globals, globals, CV_64F);
+  for (std::size_t a = 0; a < columns.index.size(); ++a) {
+    for (std::size_t b = 0; b < columns.index.size(); ++b) {
+      if (columns.index[a] >= globals || columns.index[b] >= globals) continue;
+      const int i = static_cast<int>(a), j = static_cast<int>(b);
+      out.at<double>(columns.index[a], columns.index[b]) =
+          scaled_inverse.at<double>(i, j) * scale.at<double>(i) * scale.at<double>(j) * sigma_px * sigma_px;
+    }
+  }
+  return out;
+}
 }  // namespace
 
 std::size_t reject_dense_outliers(const StereoRig& rig, const std::vector<std::vector<cv::Point3f>>& object_points,
@@ -157,6 +174,8 @@ StereoFit analyse_stereo_fit(const StereoRig& rig, const std::vector<std::vector
   cv::Mat variances(n, 1, CV_64F, std::numeric_limits<double>::quiet_NaN());
   if (dof > 0 && cv::invert(scaled, covariance, cv::DECOMP_CHOLESKY) != 0.0) {
     variances = covariance.diag().mul(scale.mul(scale)) * (fit.residual_sigma_px * fit.residual_sigma_px);
+  } else {
+    covariance.release();
   }
   RigUncertainty& u = fit.uncertainty;
   u.camera_intrinsics = std_block(columns.index, variances, 0, 4);
@@ -165,6 +184,7 @@ StereoFit analyse_stereo_fit(const StereoRig& rig, const std::vector<std::vector
   u.projector_dist_coeffs = std_block(columns.index, variances, layout.device_block() + 4, layout.dist_size);
   u.proj_from_cam_rotation_vector = std_block(columns.index, variances, layout.om(), 3);
   u.proj_from_cam_translation_mm = std_block(columns.index, variances, layout.t(), 3);
+  u.parameter_covariance = global_covariance(columns, covariance, scale, fit.residual_sigma_px, layout.pose(0));
 
   std::vector<double> view;
   for (int v = 0; v < layout.views; ++v) {

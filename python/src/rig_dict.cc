@@ -70,6 +70,7 @@ py::dict rig_dict(const Rig& rig) {
     dict["projector_dist_coeffs_std"] = matrix(u.projector_dist_coeffs);
     dict["om_std"] = matrix(u.proj_from_cam_rotation_vector);
     dict["T_std"] = matrix(u.proj_from_cam_translation_mm);
+    if (!u.parameter_covariance.empty()) dict["parameter_covariance"] = matrix(u.parameter_covariance);
   }
   return dict;
 }
@@ -100,6 +101,7 @@ Rig rig_of(const py::dict& dict) {
     u.projector_dist_coeffs = matrix_of(dict, "projector_dist_coeffs_std");
     u.proj_from_cam_rotation_vector = matrix_of(dict, "om_std");
     u.proj_from_cam_translation_mm = matrix_of(dict, "T_std");
+    if (dict.contains("parameter_covariance")) u.parameter_covariance = matrix_of(dict, "parameter_covariance");
   }
   return complete_rig(std::move(rig), "rig dict");
 }
