@@ -180,29 +180,50 @@ struct PixelMasks {
 
 }  // namespace
 
-double CaptureChecks::noise_sigma() const {
-  const Roles roles = roles_of(manifest_);
-  const Readings readings{samples_, declared_gamma(manifest_)};
-  if (!readings.has(roles.white) || !readings.has(roles.black)) return kNaN;
-  const double span = 1.0 / static_cast<double>(sample_map(manifest_).scale);
-  const double top = 1.0 - 0.5 / span;
-  std::vector<double> residuals;
+namespace {
+double sample_span(const CaptureManifest& manifest) { return 1.0 / static_cast<double>(sample_map(manifest).scale); }
+
+// pattern + inverse - white - black (expectation 0, four frames' noise) at the lit, unsaturated sampled pixels of every
+// pair added, with the four frames' sum; empty before white and black are in.
+std::vector<NoiseSample> pair_noise_samples(const CaptureManifest& manifest,
+                                            const std::vector<std::vector<float>>& samples) {
+  const Roles roles = roles_of(manifest);
+  const Readings readings{samples, declared_gamma(manifest)};
+  std::vector<NoiseSample> out;
+  if (!readings.has(roles.white) || !readings.has(roles.black)) return out;
+  const double top = 1.0 - 0.5 / sample_span(manifest);
   for (const auto& [key, pair] : roles.pairs) {
     if (!readings.has(pair.first) || !readings.has(pair.second)) continue;
-    for (std::size_t s = 0; s < samples_[roles.white].size(); ++s) {
+    for (std::size_t s = 0; s < samples[roles.white].size(); ++s) {
       const double w = readings.linear(roles.white, s), b = readings.linear(roles.black, s);
-      if (w - b <= kLitLevel || readings.reading(roles.white, s) >= top || readings.reading(pair.first, s) >= top ||
-          readings.reading(pair.second, s) >= top) {
+      if (w - b <= CaptureChecks::kLitLevel || readings.reading(roles.white, s) >= top ||
+          readings.reading(pair.first, s) >= top || readings.reading(pair.second, s) >= top) {
         continue;
       }
-      residuals.push_back(readings.linear(pair.first, s) + readings.linear(pair.second, s) - w - b);
+      const double p = readings.linear(pair.first, s), q = readings.linear(pair.second, s);
+      out.push_back({p + q + w + b, p + q - w - b});
     }
   }
-  if (residuals.empty()) return kNaN;
+  return out;
+}
+
+// One reading's quantisation noise in linear units: 1 / (span sqrt 12).
+double quantisation_sigma(const CaptureManifest& manifest) { return 1.0 / (sample_span(manifest) * std::sqrt(12.0)); }
+}  // namespace
+
+double CaptureChecks::noise_sigma() const {
+  const std::vector<NoiseSample> samples = pair_noise_samples(manifest_, samples_);
+  if (samples.empty()) return kNaN;
+  std::vector<double> residuals(samples.size());
+  std::transform(samples.begin(), samples.end(), residuals.begin(), [](const NoiseSample& n) { return n.residual; });
   const double centre = median(residuals);
   for (double& r : residuals) r = std::abs(r - centre);
-  const double quantisation = 1.0 / (span * std::sqrt(12.0));
-  return std::max(1.4826 * median(std::move(residuals)) / 2.0, quantisation);
+  return std::max(1.4826 * median(std::move(residuals)) / 2.0, quantisation_sigma(manifest_));
+}
+
+CameraNoise CaptureChecks::camera_noise() const {
+  const double quantisation = quantisation_sigma(manifest_);
+  return fit_camera_noise(pair_noise_samples(manifest_, samples_), 4, quantisation * quantisation);
 }
 
 CaptureCheckResult CaptureChecks::finish() const {
@@ -212,7 +233,7 @@ CaptureCheckResult CaptureChecks::finish() const {
   const Readings readings{samples_, result.declared_gamma};
   if (!readings.has(roles.white) || !readings.has(roles.black)) return result;
   const std::size_t n = samples_[roles.white].size();
-  const double span = 1.0 / static_cast<double>(sample_map(manifest_).scale);
+  const double span = sample_span(manifest_);
   const double black_level = manifest_.black_level;
   const double full_scale = std::ldexp(1.0, manifest_.bit_depth) - 1.0;
   const double top = 1.0 - 0.5 / span;  // half a code below the top code
@@ -359,6 +380,7 @@ CaptureCheckResult CaptureChecks::finish() const {
   if (gammas.size() >= kMinResponseSamples) result.response_gamma = median(gammas);
 
   result.noise_sigma = noise_sigma();
+  result.camera_noise = camera_noise();
   if (!signal.empty() && std::isfinite(result.noise_sigma)) {
     result.dynamic_range = percentile_of(signal, 0.99) / result.noise_sigma;
   }
@@ -463,7 +485,9 @@ std::vector<CheckMeasure> measures_of(const CaptureCheckResult& result) {
           {"white frame 99%", result.white_level, "of full scale"},
           {"largest sample", result.max_sample_dn, "DN"},
           {"noise sigma", result.noise_sigma, "linear"},
-          {"dynamic range", result.dynamic_range, "x noise sigma"}};
+          {"dynamic range", result.dynamic_range, "x noise sigma"},
+          {"read noise", std::sqrt(result.camera_noise.read_variance), "linear"},
+          {"electrons at full scale", 1.0 / result.camera_noise.variance_per_signal, "(shot noise)"}};
 }
 
 nlohmann::json to_json(const CaptureCheckResult& result) {
@@ -472,13 +496,22 @@ nlohmann::json to_json(const CaptureCheckResult& result) {
   for (const auto& finding : result.findings) {
     findings.push_back({{"check", finding.check}, {"value", value(finding.value)}, {"message", finding.message}});
   }
-  return {{"sampled_pixels", result.sampled_pixels},          {"lit_pixels", result.lit_pixels},
-          {"saturated_share", value(result.saturated_share)}, {"dot_sum_ratio", value(result.dot_sum_ratio)},
-          {"pair_sum_ratio", value(result.pair_sum_ratio)},   {"response_gamma", value(result.response_gamma)},
-          {"response_samples", result.response_samples},      {"declared_gamma", value(result.declared_gamma)},
-          {"black_frame_dn", value(result.black_frame_dn)},   {"white_level", value(result.white_level)},
-          {"max_sample_dn", value(result.max_sample_dn)},     {"noise_sigma", value(result.noise_sigma)},
-          {"dynamic_range", value(result.dynamic_range)},     {"findings", findings}};
+  return {{"sampled_pixels", result.sampled_pixels},
+          {"lit_pixels", result.lit_pixels},
+          {"saturated_share", value(result.saturated_share)},
+          {"dot_sum_ratio", value(result.dot_sum_ratio)},
+          {"pair_sum_ratio", value(result.pair_sum_ratio)},
+          {"response_gamma", value(result.response_gamma)},
+          {"response_samples", result.response_samples},
+          {"declared_gamma", value(result.declared_gamma)},
+          {"black_frame_dn", value(result.black_frame_dn)},
+          {"white_level", value(result.white_level)},
+          {"max_sample_dn", value(result.max_sample_dn)},
+          {"noise_sigma", value(result.noise_sigma)},
+          {"dynamic_range", value(result.dynamic_range)},
+          {"noise_read_variance", value(result.camera_noise.read_variance)},
+          {"noise_variance_per_signal", value(result.camera_noise.variance_per_signal)},
+          {"findings", findings}};
 }
 
 CaptureCheckResult check_capture(const FrameSource& frames, CaptureManifest manifest) {

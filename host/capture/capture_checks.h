@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
+#include "host/capture/camera_noise.h"
 #include "host/capture/frame_source.h"
 #include "host/capture/manifest.h"
 
@@ -38,6 +39,7 @@ struct CaptureCheckResult {
   double max_sample_dn = 0.0;        // the largest sample in any sampled frame, digital numbers
   double noise_sigma = std::numeric_limits<double>::quiet_NaN();    // one frame's noise, linear units (noise_sigma())
   double dynamic_range = std::numeric_limits<double>::quiet_NaN();  // (white - black) 99th percentile / noise_sigma
+  CameraNoise camera_noise;  // the noise as a function of the signal (camera_noise())
   std::vector<CheckFinding> findings;
 };
 
@@ -74,6 +76,8 @@ class CaptureChecks {
   // MAD / 2 of pattern + inverse - white - black over lit, unsaturated sampled pixels (four frames of about equal
   // noise), at least the quantisation's 1 / (span sqrt 12). NaN before white, black and one pair are in.
   double noise_sigma() const;
+  // The noise as a function of the signal, fitted to the same differences (the four frames' sum as their level).
+  CameraNoise camera_noise() const;
 
   // The measures and findings over the frames added (all of them, for a complete check); thresholds in
   // docs/method.md.

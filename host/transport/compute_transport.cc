@@ -299,6 +299,7 @@ TransportRun compute_transport(const capture::FrameSource& frames, capture::Capt
   run.gray_decision = refinement.refine(run.transport);
   run.transport.white.assign(capture.white.begin<float>(), capture.white.end<float>());
   run.checks = checks.finish();
+  run.transport.camera_noise = run.checks.camera_noise;
   run.timings = clock.timings();
   return run;
 }
@@ -364,6 +365,7 @@ TransportRun compute_transport_on_devices(const capture::FrameSource& frames, ca
   run.gray_decision = refinement.refine(run.transport);
   run.transport.white.assign(capture.white.begin<float>(), capture.white.end<float>());
   run.checks = checks.finish();
+  run.transport.camera_noise = run.checks.camera_noise;
   run.timings = clock.timings();
   run.schedule = runner.reports();
   return run;

@@ -417,6 +417,9 @@ class Reader {
   bool has(const char* name) {
     return guarded(std::string("dataset '") + name + "'", [&] { return file_.nameExists(name); });
   }
+  bool has_attribute(const char* name) {
+    return guarded(std::string("attribute '") + name + "'", [&] { return file_.attrExists(name); });
+  }
 
   void close() {
     guarded("the HDF5 file", [&] { file_.close(); });
@@ -581,6 +584,10 @@ void write_transport(const CompressedTransport& transport, const fs::path& file,
     write_attribute(h5, "black_threshold", double{setup.thresholds.black});
     write_attribute(h5, "white_threshold", double{setup.thresholds.white});
     write_attribute(h5, "noise_threshold", double{setup.thresholds.noise});
+    if (transport.camera_noise.known()) {
+      write_attribute(h5, "noise_read_variance", transport.camera_noise.read_variance);
+      write_attribute(h5, "noise_variance_per_signal", transport.camera_noise.variance_per_signal);
+    }
     const Shapes shapes(setup);
     write_dataset(h5, "indices", shapes.entries, transport.indices, deflate_level);
     write_dataset(h5, "weights", shapes.entries, transport.weights, deflate_level);
@@ -651,6 +658,13 @@ CompressedTransport read_transport(const fs::path& file) {
   transport.flags = reader.dataset<std::uint8_t>("flags", shapes.pixels);
   transport.direct_energy = reader.dataset<float>("direct_energy", shapes.pixels);
   if (reader.has("white")) transport.white = reader.dataset<float>("white", shapes.pixels);
+  if (reader.has_attribute("noise_read_variance")) {
+    transport.camera_noise.read_variance = reader.finite("noise_read_variance");
+    transport.camera_noise.variance_per_signal = reader.finite("noise_variance_per_signal");
+    if (!transport.camera_noise.known()) {
+      reader.fail("attributes 'noise_read_variance' and 'noise_variance_per_signal' must be at least 0");
+    }
+  }
   reader.close();
 
   check_values(reader, transport, decoded, shapes);

@@ -8,6 +8,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "host/capture/camera_noise.h"
 #include "host/capture/manifest.h"
 #include "host/cl/kernel_entry.h"
 #include "host/cl/program_cache.h"
@@ -116,6 +117,7 @@ struct CompressedTransport {
   std::vector<std::uint8_t> flags;     // N PixelFlag bits
   std::vector<float> direct_energy;    // N sum of all entries above noise in the window (kept or not)
   std::vector<float> white;            // N linear white frame (1 = full scale, black level off); empty: unknown
+  capture::CameraNoise camera_noise;   // the frames' noise, as the capture checks fitted it; unknown: not measured
 
   std::size_t camera_pixels() const { return static_cast<std::size_t>(setup.camera_size.area()); }
   std::size_t projector_pixels() const { return static_cast<std::size_t>(setup.projector_size.area()); }
