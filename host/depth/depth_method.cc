@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "host/core/named_registry.h"
+#include "host/depth/observation_sigma.h"
 #include "host/depth/row_methods.h"
 
 namespace rfrecon::depth {
@@ -18,6 +19,11 @@ class TriangulateMethod : public DepthMethod {
   bool needs_rows() const override { return false; }
   std::vector<cl::ProgramRequest> programs(const transport::CompressedTransport&) const override { return {}; }
   cv::Mat solve(MethodScan& scan) const override { return scan.triangulation.z_rect_mm; }
+  cv::Mat observation_sigma(const MethodScan& scan, const cv::Mat& z_rect_mm) const override {
+    const cv::Mat column_sigma = rectified_column_sigma_px(scan.transport, scan.rectification);
+    return column_sigma.empty() ? column_sigma
+                                : triangulated_depth_sigma(z_rect_mm, column_sigma, scan.rectification.rig);
+  }
 };
 
 NamedRegistry<DepthMethod>& registry() {
@@ -27,6 +33,8 @@ NamedRegistry<DepthMethod>& registry() {
 }
 
 }  // namespace
+
+cv::Mat DepthMethod::observation_sigma(const MethodScan&, const cv::Mat&) const { return {}; }
 
 void register_depth_method(std::shared_ptr<const DepthMethod> method) { registry().add(std::move(method)); }
 

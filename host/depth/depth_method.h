@@ -62,6 +62,9 @@ class DepthMethod {
   // Depth along the rectified optical axis (mm) at each camera pixel, CV_32F of the camera's size, NaN where none.
   // Throws ProcessingError when nothing is left to reconstruct, saying where the pixels went (pixel_losses.h).
   virtual cv::Mat solve(MethodScan& scan) const = 0;
+  // One standard deviation (mm, along the rectified axis like solve's depth) of each pixel's depth that the frames'
+  // noise causes, given solve's result; empty where the method does not propagate it (the default).
+  virtual cv::Mat observation_sigma(const MethodScan& scan, const cv::Mat& z_rect_mm) const;
 };
 
 // Adds `method` to the registry (after the built-ins triangulate, integrate and fused). Throws std::invalid_argument

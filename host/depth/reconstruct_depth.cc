@@ -10,6 +10,7 @@
 #include "host/core/parallel_rows.h"
 #include "host/core/stage_clock.h"
 #include "host/depth/camera_grid.h"
+#include "host/depth/depth_sigma.h"
 #include "host/depth/pixel_losses.h"
 
 namespace rfrecon::depth {
@@ -114,6 +115,8 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
   run.maps = camera_frame_maps(z_rect_grid, triangulation.rect_cam, rectified, rectification.rect_from_cam);
   fill_confidence(run.maps, z_rect_grid, triangulation, rectified, options);
   clock.lap("camera grid");
+  add_depth_sigma(run.maps, z_rect_grid, method.observation_sigma(scan, z_rect_grid), rig, summary);
+  clock.lap("uncertainty");
   summary["timings"] = clock.timings();
   summary["programs"] = programs.builds();
   const int reconstructed = cv::countNonZero(run.maps.depth_mm == run.maps.depth_mm);

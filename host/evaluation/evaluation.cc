@@ -29,10 +29,11 @@ constexpr double kErrorMapFullScaleFraction = 0.01;  // of the object's size
 
 // Sums over one pixel set, turned into ErrorStats at the end.
 struct Accumulator {
-  std::size_t truth_pixels = 0, reconstructed = 0, normal_pixels = 0;
+  std::size_t truth_pixels = 0, reconstructed = 0, normal_pixels = 0, sigma_pixels = 0;
   double sum = 0.0, sum_abs = 0.0, sum_squares = 0.0, max_abs = 0.0, sum_angle_squares = 0.0;
+  double sum_sigma_squares = 0.0, sum_normalized_squares = 0.0;
 
-  void add(double error_mm, double angle_deg) {
+  void add(double error_mm, double angle_deg, double sigma_mm) {
     ++truth_pixels;
     if (std::isfinite(error_mm)) {
       ++reconstructed;
@@ -40,6 +41,11 @@ struct Accumulator {
       sum_abs += std::abs(error_mm);
       sum_squares += error_mm * error_mm;
       max_abs = std::max(max_abs, std::abs(error_mm));
+      if (sigma_mm > 0.0) {  // also rejects NaN
+        ++sigma_pixels;
+        sum_sigma_squares += sigma_mm * sigma_mm;
+        sum_normalized_squares += (error_mm / sigma_mm) * (error_mm / sigma_mm);
+      }
     }
     if (std::isfinite(angle_deg)) {
       ++normal_pixels;
@@ -59,6 +65,10 @@ struct Accumulator {
     s.bias_mm = reconstructed > 0 ? sum / n : kNaN;
     s.normal_pixels = normal_pixels;
     s.normal_rms_deg = normal_pixels > 0 ? std::sqrt(sum_angle_squares / static_cast<double>(normal_pixels)) : kNaN;
+    s.sigma_pixels = sigma_pixels;
+    const double m = static_cast<double>(sigma_pixels);
+    s.sigma_rms_mm = sigma_pixels > 0 ? std::sqrt(sum_sigma_squares / m) : kNaN;
+    s.error_over_sigma_rms = sigma_pixels > 0 ? std::sqrt(sum_normalized_squares / m) : kNaN;
     return s;
   }
 };
@@ -82,7 +92,11 @@ nlohmann::ordered_json stats_json(const ErrorStats& s, double size_mm) {
           {"depth_error_percent_of_size",
            {{"rms", percent(s.rms_mm)}, {"mean_abs", percent(s.mean_abs_mm)}, {"max_abs", percent(s.max_abs_mm)}}},
           {"normal_pixels", s.normal_pixels},
-          {"normal_error_deg_rms", s.normal_rms_deg}};
+          {"normal_error_deg_rms", s.normal_rms_deg},
+          {"depth_sigma",
+           {{"pixels", s.sigma_pixels},
+            {"predicted_rms_mm", s.sigma_rms_mm},
+            {"error_over_sigma_rms", s.error_over_sigma_rms}}}};
 }
 // The objects' names for a message: each quoted through excerpt(), the first kListedObjects of them.
 std::string object_names(const std::vector<truth::TruthObject>& objects) {
@@ -147,10 +161,12 @@ Evaluation evaluate(const outputs::Reconstruction& reconstruction, const Evaluat
       const double error_mm = static_cast<double>(reconstruction.depth_mm.at<float>(y, x)) - z_truth;
       e.depth_error_mm.at<float>(y, x) = static_cast<float>(error_mm);
       const double angle = angle_deg(reconstruction.normals.at<cv::Vec3f>(y, x), truth.normals.at<cv::Vec3f>(y, x));
-      all.add(error_mm, angle);
+      const double sigma_mm =
+          reconstruction.depth_sigma_mm.empty() ? kNaN : reconstruction.depth_sigma_mm.at<float>(y, x);
+      all.add(error_mm, angle, sigma_mm);
       if (truth.object_id.at<std::uint16_t>(y, x) == truth.object.label) {
         e.object_mask.at<std::uint8_t>(y, x) = 255;
-        object.add(error_mm, angle);
+        object.add(error_mm, angle, sigma_mm);
       }
     }
   }
@@ -215,6 +231,10 @@ std::string evaluation_table(const Evaluation& e) {
     table += fmt::format("{:<8} {:>9} {:>11.2f} {:>9.4f} {:>9.4f} {:>9.4f} {:>9.4f} {:>10.4f} {:>14.3f}\n", name,
                          s.truth_pixels, s.coverage_percent, s.rms_mm, s.mean_abs_mm, s.max_abs_mm, s.bias_mm,
                          100.0 * s.rms_mm / e.object_size_mm, s.normal_rms_deg);
+  }
+  if (e.object.sigma_pixels > 0) {
+    table += fmt::format("object error / depth sigma: RMS {:.3f} over {} pixels (predicted sigma RMS {:.4f} mm)\n",
+                         e.object.error_over_sigma_rms, e.object.sigma_pixels, e.object.sigma_rms_mm);
   }
   return table;
 }

@@ -42,6 +42,12 @@ struct ErrorStats {
   double bias_mm = 0.0;           // mean signed error
   std::size_t normal_pixels = 0;  // pixels of the set where both normals are finite
   double normal_rms_deg = 0.0;    // RMS angle between the normals
+  // Of the reconstructed pixels, those with a depth sigma (the reconstruction's depth_sigma_mm), the RMS of that sigma
+  // and of error / sigma: about 1 where the error bar is honest and the error is noise, above 1 where the error has a
+  // part the sigma does not model (NaN without sigma).
+  std::size_t sigma_pixels = 0;
+  double sigma_rms_mm = 0.0;
+  double error_over_sigma_rms = 0.0;
 };
 
 struct Evaluation {

@@ -12,6 +12,11 @@ struct Reconstruction {
   cv::Mat normals;     // CV_32FC3: unit normal facing the camera, NaN where none
   cv::Mat confidence;  // CV_32F in [0, 1]: 0 where none, higher is more trusted
   cv::Mat white;       // CV_32F: linear white frame (1 = full scale), the PLY's colour; empty: none (uncoloured)
+  // One standard deviation of depth_mm (mm): the calibration's part, the observation's (the frames' noise) and their
+  // root sum of squares (host/depth/depth_sigma.h). CV_32F, NaN where unknown; empty: not computed.
+  cv::Mat depth_sigma_calibration_mm;
+  cv::Mat depth_sigma_observation_mm;
+  cv::Mat depth_sigma_mm;
 };
 
 }  // namespace rfrecon::outputs

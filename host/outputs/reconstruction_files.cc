@@ -2,9 +2,11 @@
 #include "host/outputs/reconstruction_files.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
@@ -21,6 +23,14 @@ namespace rfrecon::outputs {
 namespace fs = std::filesystem;
 
 namespace {
+// The depth's standard deviations and their files (the PLY's property is the file's stem).
+template <typename R>  // Reconstruction or const Reconstruction
+std::array<std::pair<decltype(&std::declval<R&>().depth_sigma_mm), const char*>, 3> sigma_maps(R& r) {
+  return {{{&r.depth_sigma_mm, "depth_sigma.tiff"},
+           {&r.depth_sigma_calibration_mm, "depth_sigma_calibration.tiff"},
+           {&r.depth_sigma_observation_mm, "depth_sigma_observation.tiff"}}};
+}
+
 void check_maps(const Reconstruction& r) {
   const cv::Size size = r.depth_mm.size();
   const auto check = [&](const cv::Mat& map, int type, const char* name) {
@@ -34,6 +44,9 @@ void check_maps(const Reconstruction& r) {
   check(r.normals, CV_32FC3, "normals");
   check(r.confidence, CV_32FC1, "confidence");
   if (!r.white.empty()) check(r.white, CV_32FC1, "white");
+  for (const auto& [map, name] : sigma_maps(r)) {
+    if (!map->empty()) check(*map, CV_32FC1, name);
+  }
 }
 
 // OpenCV's TIFF codec stores a 3-channel image's channels in reverse (BGR in memory, RGB in the file): these reverse
@@ -67,6 +80,18 @@ cv::Mat normals_key() {
   return normals_preview(normals, depth);
 }
 
+// 255 where the depth is finite.
+cv::Mat valid_mask(const cv::Mat& depth_mm) { return depth_mm == depth_mm; }
+
+// `map` through COLORMAP_TURBO from `low` (blue) to `high` (red), saturating outside; black where it is not finite.
+cv::Mat turbo_preview(const cv::Mat& map, double low, double high) {
+  cv::Mat preview = cv::Mat::zeros(map.size(), CV_8UC3), scaled, coloured;
+  map.convertTo(scaled, CV_8U, 255.0 / (high - low), -255.0 * low / (high - low));
+  cv::applyColorMap(scaled, coloured, cv::COLORMAP_TURBO);
+  coloured.copyTo(preview, valid_mask(map));
+  return preview;
+}
+
 void write_previews(const fs::path& dir, const Reconstruction& r) {
   const auto [low, high] = depth_preview_range(r.depth_mm);
   Legend depth{"depth z (mm)", colour_bar_key(cv::COLORMAP_TURBO), {}, {"1st to 99th percentile", "black: no depth"}};
@@ -77,10 +102,15 @@ void write_previews(const fs::path& dir, const Reconstruction& r) {
   write_image(dir / "normals.png", with_legend(normals_preview(r.normals, r.depth_mm), normals));
   const Legend confidence{"confidence (0 to 1)", grey_bar_key(), bar_ticks(0.0, 1.0, 1), {"black: no depth"}};
   write_image(dir / "confidence.png", with_legend(confidence_preview(r.confidence, r.depth_mm), confidence));
+  const double sigma_high = r.depth_sigma_mm.empty() ? 0.0 : finite_percentile(r.depth_sigma_mm, 0.99);
+  if (sigma_high > 0.0) {  // also rejects NaN: no sigma known anywhere
+    const Legend sigma{"depth sigma (mm)",
+                       colour_bar_key(cv::COLORMAP_TURBO),
+                       bar_ticks(0.0, sigma_high, sigma_high < 0.1 ? 4 : 2, ">= "),
+                       {"0 to 99th percentile", "black: no depth or", "sigma unknown"}};
+    write_image(dir / "depth_sigma.png", with_legend(turbo_preview(r.depth_sigma_mm, 0.0, sigma_high), sigma));
+  }
 }
-
-// 255 where the depth is finite.
-cv::Mat valid_mask(const cv::Mat& depth_mm) { return depth_mm == depth_mm; }
 
 }  // namespace
 
@@ -91,15 +121,9 @@ std::pair<double, double> depth_preview_range(const cv::Mat& depth_mm) {
 }
 
 cv::Mat depth_preview(const cv::Mat& depth_mm) {
-  cv::Mat preview = cv::Mat::zeros(depth_mm.size(), CV_8UC3);
   const auto [low, high] = depth_preview_range(depth_mm);
-  if (std::isnan(low)) return preview;
-  cv::Mat scaled;
-  depth_mm.convertTo(scaled, CV_8U, 255.0 / (high - low), -255.0 * low / (high - low));  // saturates outside
-  cv::Mat coloured;
-  cv::applyColorMap(scaled, coloured, cv::COLORMAP_TURBO);
-  coloured.copyTo(preview, valid_mask(depth_mm));
-  return preview;
+  if (std::isnan(low)) return cv::Mat::zeros(depth_mm.size(), CV_8UC3);
+  return turbo_preview(depth_mm, low, high);
 }
 
 cv::Mat normals_preview(const cv::Mat& normals, const cv::Mat& depth_mm) {
@@ -156,11 +180,17 @@ void write_reconstruction(const Reconstruction& reconstruction, const nlohmann::
   write_xyz_tiff(dir / "points.tiff", r.points_mm);
   write_xyz_tiff(dir / "normals.tiff", r.normals);
   write_image(dir / "confidence.tiff", r.confidence);
+  std::vector<PlyScalarMap> scalars = {{"quality", r.confidence}};
+  for (const auto& [map, name] : sigma_maps(r)) {
+    if (map->empty()) continue;
+    write_image(dir / name, *map);
+    scalars.push_back({fs::path(name).stem().string(), *map});
+  }
   write_point_cloud_ply(dir / "points.ply",
                         std::string("rfrecon reconstruction, camera frame, mm; quality = confidence") +
-                            (r.white.empty() ? "" : "; colour = white frame, sRGB"),
-                        r.points_mm, r.normals, {{"quality", r.confidence}},
-                        r.white.empty() ? cv::Mat() : white_colours_rgb(r.white));
+                            (r.white.empty() ? "" : "; colour = white frame, sRGB") +
+                            (scalars.size() > 1 ? "; depth_sigma* = one standard deviation of z, mm" : ""),
+                        r.points_mm, r.normals, scalars, r.white.empty() ? cv::Mat() : white_colours_rgb(r.white));
   write_previews(dir, r);
   write_file_atomically(dir / "summary.json", summary.dump(2) + "\n");
   staging.commit();
@@ -176,6 +206,14 @@ Reconstruction read_reconstruction(const fs::path& dir) {
   r.confidence = read_image(dir / "confidence.tiff", CV_32FC1);
   for (const auto& [map, name] : {std::pair{&r.points_mm, "points.tiff"}, std::pair{&r.normals, "normals.tiff"},
                                   std::pair{&r.confidence, "confidence.tiff"}}) {
+    if (map->size() != r.depth_mm.size()) {
+      throw InputError((dir / name).string() + ": " + size_text(map->size()) + ", expected " +
+                       size_text(r.depth_mm.size()) + " (the size of depth.tiff)");
+    }
+  }
+  for (const auto& [map, name] : sigma_maps(r)) {
+    if (!fs::exists(dir / name, ec)) continue;  // a reconstruction of an rfrecon before them has none
+    *map = read_image(dir / name, CV_32FC1);
     if (map->size() != r.depth_mm.size()) {
       throw InputError((dir / name).string() + ": " + size_text(map->size()) + ", expected " +
                        size_text(r.depth_mm.size()) + " (the size of depth.tiff)");

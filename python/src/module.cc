@@ -1,5 +1,6 @@
 // The Python module rfrecon._rfrecon: the front door (rfrecon/rfrecon.h) over numpy arrays.
 #include <algorithm>
+#include <array>
 
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
@@ -101,6 +102,13 @@ rfrecon::ReconstructOptions reconstruct_options(const std::string& method, const
   return options;
 }
 
+// The depth's standard deviations by their dict keys.
+std::array<std::pair<const char*, cv::Mat*>, 3> sigma_fields(rfrecon::outputs::Reconstruction& maps) {
+  return {{{"depth_sigma_mm", &maps.depth_sigma_mm},
+           {"depth_sigma_calibration_mm", &maps.depth_sigma_calibration_mm},
+           {"depth_sigma_observation_mm", &maps.depth_sigma_observation_mm}}};
+}
+
 py::dict reconstruction_dict(rfrecon::ReconstructResult result) {
   py::dict maps;
   maps["depth_mm"] = array_of(result.maps.depth_mm);
@@ -108,6 +116,9 @@ py::dict reconstruction_dict(rfrecon::ReconstructResult result) {
   maps["normals"] = array_of(result.maps.normals);
   maps["confidence"] = array_of(result.maps.confidence);
   maps["white"] = result.maps.white.empty() ? py::object(py::none()) : py::object(array_of(result.maps.white));
+  for (const auto& [key, sigma] : sigma_fields(result.maps)) {
+    maps[key] = sigma->empty() ? py::object(py::none()) : py::object(array_of(*sigma));
+  }
   maps["summary"] = py::module_::import("json").attr("loads")(result.summary.dump());
   maps["rig"] = rfrecon::python::rig_dict(result.rig);
   return maps;
@@ -125,6 +136,9 @@ rfrecon::ReconstructResult reconstruction_of(const py::dict& maps) {
   result.maps.normals = map("normals");
   result.maps.confidence = map("confidence");
   if (maps.contains("white") && !maps["white"].is_none()) result.maps.white = map("white");
+  for (const auto& [key, sigma] : sigma_fields(result.maps)) {
+    if (maps.contains(key) && !maps[key].is_none()) *sigma = map(key);
+  }
   const py::object summary = maps.contains("summary") ? py::object(maps["summary"]) : py::object(py::dict());
   result.summary = nlohmann::json::parse(py::module_::import("json").attr("dumps")(summary).cast<std::string>());
   return result;
@@ -319,7 +333,8 @@ PYBIND11_MODULE(_rfrecon, module) {
           },
           py::arg("transport"), py::arg("rig"), py::arg("method") = "fused",
           "Depth of T with the rig, as `rfrecon reconstruct`: a dict of depth_mm (H, W), points_mm and normals "
-          "(H, W, 3), confidence, white (float32, NaN where none), summary (summary.json's dict) and the rig. "
+          "(H, W, 3), confidence, white, depth_sigma_mm and its parts depth_sigma_calibration_mm and "
+          "depth_sigma_observation_mm (float32, NaN where none), summary (summary.json's dict) and the rig. "
           "Tuning options by their command-line names with underscores (crease=8.0, sigma_step=0.2; docs/cli.md), "
           "each checked against its range.")
       .def(

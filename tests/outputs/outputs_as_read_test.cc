@@ -207,14 +207,14 @@ TEST_F(OutputsAsReadTest, PlyColoursFollowTheWhiteFrame) {
   const auto transport = transport::read_transport(scan_->dir.path() / "T.h5");
   ASSERT_EQ(transport.white.size(), 80u * 60u);
   const auto ply = testing::read_ply_vertices(scan_->out() / "points.ply");
-  ASSERT_EQ(ply.properties.size(), 12u);
-  ASSERT_EQ(ply.properties[9], "red");
+  ASSERT_EQ(ply.properties.size(), 15u);
+  ASSERT_EQ(ply.properties[12], "red");
   std::vector<std::pair<float, float>> white_and_grey;
   for (std::size_t v = 0; v < ply.count; ++v) {
-    ASSERT_EQ(ply.at(v, 9), ply.at(v, 10));
-    ASSERT_EQ(ply.at(v, 9), ply.at(v, 11));
+    ASSERT_EQ(ply.at(v, 12), ply.at(v, 13));
+    ASSERT_EQ(ply.at(v, 12), ply.at(v, 14));
     const auto c = static_cast<std::size_t>(ply.at(v, 7)) * 80 + static_cast<std::size_t>(ply.at(v, 6));
-    white_and_grey.emplace_back(transport.white[c], ply.at(v, 9));
+    white_and_grey.emplace_back(transport.white[c], ply.at(v, 12));
   }
   std::sort(white_and_grey.begin(), white_and_grey.end());
   for (std::size_t i = 1; i < white_and_grey.size(); ++i) {
@@ -222,6 +222,29 @@ TEST_F(OutputsAsReadTest, PlyColoursFollowTheWhiteFrame) {
         << "white " << white_and_grey[i].first << " after " << white_and_grey[i - 1].first;
   }
   EXPECT_GT(white_and_grey.back().second - white_and_grey.front().second, 10.0f);
+}
+
+// Each point's depth sigma is in the PLY as the float TIFFs hold it, pixel for pixel: the total, then its calibration
+// and observation parts (a true rig: the calibration's is 0 and the total is the observation's).
+TEST_F(OutputsAsReadTest, PlyDepthSigmaIsTheTiffsAtEachPixel) {
+  const auto ply = testing::read_ply_vertices(scan_->out() / "points.ply");
+  const char* names[] = {"depth_sigma", "depth_sigma_calibration", "depth_sigma_observation"};
+  std::size_t compared = 0;
+  for (int part = 0; part < 3; ++part) {
+    ASSERT_EQ(ply.properties[9 + part], names[part]);
+    const auto tiff = testing::read_float_tiff(scan_->out() / (std::string(names[part]) + ".tiff"));
+    ASSERT_EQ(tiff.samples, 1);
+    for (std::size_t v = 0; v < ply.count; ++v) {
+      const auto x = static_cast<std::uint32_t>(ply.at(v, 6)), y = static_cast<std::uint32_t>(ply.at(v, 7));
+      const float in_ply = ply.at(v, 9 + part), in_tiff = tiff.at(x, y, 0);
+      ASSERT_TRUE(in_ply == in_tiff || (std::isnan(in_ply) && std::isnan(in_tiff))) << names[part] << " at " << x;
+      if (part == 1) {
+        EXPECT_EQ(in_ply, 0.0f);
+      }
+      compared += std::isfinite(in_ply) ? 1 : 0;
+    }
+  }
+  EXPECT_GT(compared, 1000u);
 }
 
 }  // namespace

@@ -10,7 +10,8 @@ import pytest
 
 import rfrecon
 
-MAPS = ["depth.tiff", "points.tiff", "normals.tiff", "confidence.tiff", "points.ply"]
+MAPS = ["depth.tiff", "points.tiff", "normals.tiff", "confidence.tiff", "depth_sigma.tiff", "depth_sigma_calibration.tiff",
+        "depth_sigma_observation.tiff", "points.ply"]
 
 
 def frames_of(capture):
@@ -80,6 +81,11 @@ def test_reconstruction_equals_the_tools_files_and_is_the_plane(cli, session, pl
     assert np.sqrt(np.mean((centred @ normal) ** 2)) < 0.5
     assert maps["depth_mm"].dtype == np.float32 and maps["points_mm"].shape == (48, 64, 3)
     np.testing.assert_array_equal(maps["rig"]["camera_matrix"], rfrecon.read_rig(rig_file)["camera_matrix"])
+    # The true rig has no uncertainty: the calibration's part is 0 wherever there is depth; the fusion does not
+    # propagate the frames' noise, so neither the observation's part nor the total is known.
+    has_depth = np.isfinite(maps["depth_mm"])
+    assert np.all(maps["depth_sigma_calibration_mm"][has_depth] == 0)
+    assert np.all(np.isnan(maps["depth_sigma_observation_mm"])) and np.all(np.isnan(maps["depth_sigma_mm"]))
 
 
 def test_primal_and_dual_images_are_t_times_ones(session, transport):
