@@ -16,8 +16,8 @@ cv::Mat rig_parameter_covariance(const calib::StereoRig& rig);
 // One standard deviation (mm) of the depth of each point of `depth_mm` (CV_32F, the camera frame's z, NaN where none)
 // that the calibration causes: the same correspondence (camera pixel, and the projector point the rig projects the
 // point to) triangulated with the rig moved along each principal direction of `covariance` by one standard deviation,
-// the depth taken, as the rectified rows take it, along the epipolar line. Computed exactly on a grid of 33 x 33 camera
-// positions by 17 inverse depths spanning the map's and interpolated (the relative variance, trilinear in inverse
+// the depth taken, as the rectified rows take it, along the epipolar line. Computed exactly on a grid of 17 x 17 camera
+// positions by 9 inverse depths spanning the map's and interpolated (the relative variance, trilinear in inverse
 // depth) at each pixel. CV_32F
 // of depth_mm's size, NaN where depth_mm is NaN. Throws std::invalid_argument when `covariance` is not G x G.
 cv::Mat calibration_depth_sigma(const calib::StereoRig& rig, const cv::Mat& covariance, const cv::Mat& depth_mm);
