@@ -5,7 +5,8 @@
 # Calibrations: for pose seed 1..POSE_SEEDS, checkerboard-poses with every board pose moved at random (up to 15 mm
 # across, 30 mm in depth, 4 degrees about each axis; the noise seed is the pose seed) is rendered and calibrated; each
 # rig reconstructs seed 1's T.h5 of each scene with each method, and the spread over the rigs is compared with
-# depth_sigma_calibration. Prints one JSON line per scene, method and part. About 20 minutes on a 2-core machine.
+# depth_sigma_calibration. Prints one JSON line per scene, method and part. About 45 minutes on a 2-core machine
+# with 30 pose seeds, most of it the calibrations.
 # Usage: bash scripts/depth_sigma_monte_carlo.sh OUT_DIR [FRAME_SEEDS] [POSE_SEEDS]   (default 20 and 10)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
