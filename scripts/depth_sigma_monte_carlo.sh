@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Predicted depth sigma against the observed spread (docs/accuracy.md, "Uncertainty of each point").
 # Frames: for each scene and noise seed 1..FRAME_SEEDS, `rfrecon simulate`, transport and reconstruct with the true rig
-# (calibration part 0); scripts/depth_sigma_spread.py over the seeds with depth_sigma_observation.
+# (calibration part 0) by each method (--sigma-samples 8 where there is no closed form); scripts/depth_sigma_spread.py
+# over the seeds with depth_sigma_observation.
 # Calibrations: for pose seed 1..POSE_SEEDS, checkerboard-poses with every board pose moved at random (up to 15 mm
 # across, 30 mm in depth, 4 degrees about each axis; the noise seed is the pose seed) is rendered and calibrated; each
 # rig reconstructs seed 1's T.h5 of each scene with each method, and the spread over the rigs is compared with
-# depth_sigma_calibration. Prints one JSON line per scene, method and part. About 45 minutes on a 2-core machine
+# depth_sigma_calibration. Prints one JSON line per scene, method and part. About 50 minutes on a 2-core machine
 # with 30 pose seeds, most of it the calibrations.
 # Usage: bash scripts/depth_sigma_monte_carlo.sh OUT_DIR [FRAME_SEEDS] [POSE_SEEDS]   (default 20 and 10)
 set -euo pipefail
@@ -44,20 +45,24 @@ PY
   rm -rf "$d/poses/capture"
 done
 for scene in cube-anisotropic board-plane; do
-  dirs=()
   for seed in $(seq 1 "$frame_seeds"); do
     d=$out/$scene/s$seed
-    if [[ ! -f $d/triangulate/points.ply ]]; then
+    if [[ ! -f $d/fused/points.ply ]]; then
       "$rfrecon" -q simulate --scene "$scene" --seed "$seed" -o "$d" --force >/dev/null
       "$rfrecon" -q transport "$d/capture" -o "$d/T.h5" --force >/dev/null
-      "$rfrecon" -q reconstruct "$d/T.h5" --calib "$d/truth/rig.yaml" --method triangulate -o "$d/triangulate" \
-        --force >/dev/null
+      for method in triangulate integrate fused; do  # the triangulation's sigma has a closed form: no samples
+        "$rfrecon" -q reconstruct "$d/T.h5" --calib "$d/truth/rig.yaml" --method "$method" --sigma-samples 8 \
+          -o "$d/$method" --force >/dev/null
+      done
       ((seed == 1)) || rm -rf "$d/capture" "$d/T.h5"  # seed 1's T.h5 serves the calibrations
     fi
-    dirs+=("$d/triangulate")
   done
-  printf '{"scene": "%s", "method": "triangulate", "part": "observation", "spread": %s}\n' "$scene" \
-    "$(python3 "$root/scripts/depth_sigma_spread.py" --json --sigma depth_sigma_observation "${dirs[@]}")"
+  for method in triangulate integrate fused; do
+    dirs=()
+    for seed in $(seq 1 "$frame_seeds"); do dirs+=("$out/$scene/s$seed/$method"); done
+    printf '{"scene": "%s", "method": "%s", "part": "observation", "spread": %s}\n' "$scene" "$method" \
+      "$(python3 "$root/scripts/depth_sigma_spread.py" --json --sigma depth_sigma_observation "${dirs[@]}")"
+  done
   for method in triangulate integrate fused; do
     dirs=()
     for seed in $(seq 1 "$pose_seeds"); do

@@ -27,6 +27,9 @@ struct DepthOptions {
   IntegrationOptions integration;
   FusionOptions fusion;
   cl::EntryChoice entries;  // kernel entry per device (default auto: cl::preferred_entry of each)
+  // Noisy copies of T a method without a closed form for the frames' part of its depth sigma reruns on
+  // (host/depth/sampled_sigma.h); 0: that part is left unknown.
+  int sigma_samples = 0;
 };
 
 // What a method is given: the scan, its triangulation on the camera grid, and where to run, time and report.

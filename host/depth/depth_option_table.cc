@@ -34,6 +34,10 @@ const std::vector<DepthOptionSpec>& depth_option_table() {
        [](DepthOptions& o) { return &o.fusion.sigma_disparity_px; }, nullptr},
       {"sigma-step", "ODE step error, mm (fusion weight)", 1e-4, 100.0,
        [](DepthOptions& o) { return &o.fusion.sigma_step_mm; }, nullptr},
+      {"sigma-samples",
+       "Noisy copies of T the method reruns on to measure the frames' part of each point's depth sigma where it has "
+       "no closed form (integrate, fused; 0: left unknown)",
+       0, 64, nullptr, [](DepthOptions& o) { return &o.sigma_samples; }},
   };
   return table;
 }

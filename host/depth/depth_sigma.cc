@@ -21,7 +21,7 @@ nlohmann::json spread(const cv::Mat& sigma) {
 }  // namespace
 
 void add_depth_sigma(outputs::Reconstruction& maps, const cv::Mat& z_rect_mm, const cv::Mat& observation_rect_sigma_mm,
-                     const calib::StereoRig& rig, nlohmann::json& summary) {
+                     const std::string& observation_source, const calib::StereoRig& rig, nlohmann::json& summary) {
   const cv::Mat& depth = maps.depth_mm;
   const cv::Mat covariance = rig_parameter_covariance(rig);
   maps.depth_sigma_calibration_mm = covariance.empty() ? cv::Mat(depth.size(), CV_32F, cv::Scalar(0.0f))
@@ -48,8 +48,7 @@ void add_depth_sigma(outputs::Reconstruction& maps, const cv::Mat& z_rect_mm, co
       {"calibration_source", covariance.empty() ? "none: the rig has no uncertainty (0)"
                              : full             ? "the rig's parameter covariance"
                                                 : "the rig's standard deviations (no covariance in the file)"},
-      {"observation_source", observation_rect_sigma_mm.empty() ? "not propagated by this method or capture"
-                                                               : "the frames' noise through the correspondences"}};
+      {"observation_source", observation_source}};
 }
 
 }  // namespace rfrecon::depth

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include <spdlog/spdlog.h>
 
@@ -12,6 +13,7 @@
 #include "host/depth/camera_grid.h"
 #include "host/depth/depth_sigma.h"
 #include "host/depth/pixel_losses.h"
+#include "host/depth/sampled_sigma.h"
 
 namespace rfrecon::depth {
 
@@ -115,7 +117,14 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
   run.maps = camera_frame_maps(z_rect_grid, triangulation.rect_cam, rectified, rectification.rect_from_cam);
   fill_confidence(run.maps, z_rect_grid, triangulation, rectified, options);
   clock.lap("camera grid");
-  add_depth_sigma(run.maps, z_rect_grid, method.observation_sigma(scan, z_rect_grid), rig, summary);
+  cv::Mat observation_sigma = method.observation_sigma(scan, z_rect_grid);
+  std::string observation_source = "the frames' noise through the correspondences";
+  if (observation_sigma.empty() && options.sigma_samples > 0) {
+    observation_sigma = sampled_observation_sigma(method, scan, rig, options.sigma_samples);
+    observation_source = "the spread over " + std::to_string(options.sigma_samples) + " noisy copies of T";
+  }
+  if (observation_sigma.empty()) observation_source = "not propagated by this method or capture";
+  add_depth_sigma(run.maps, z_rect_grid, observation_sigma, observation_source, rig, summary);
   clock.lap("uncertainty");
   summary["timings"] = clock.timings();
   summary["programs"] = programs.builds();

@@ -129,6 +129,7 @@ TEST_F(OptionSweepTest, ReconstructRunsAtBothEndsOfEveryRange) {
       {"--iterations", {"1", "20"}},
       {"--sigma-disparity", {"0.0001", "100"}},
       {"--sigma-step", {"0.0001", "100"}},
+      {"--sigma-samples", {"0", "64"}},
   };
   int run = 0;
   for (const auto& [option, ends] : ranges) {
