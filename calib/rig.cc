@@ -237,8 +237,7 @@ StereoRig read_rig_file(const fs::path& file) {
 
 int rig_parameter_count(const StereoRig& rig) { return 2 * (4 + static_cast<int>(rig.dist_coeffs.total())) + 6; }
 
-std::vector<double> rig_parameters(const StereoRig& rig) {
-  const int dist_size = static_cast<int>(rig.dist_coeffs.total());
+std::vector<double> rig_parameters(const StereoRig& rig, int dist_size) {
   std::vector<double> p;
   for (const auto& [matrix, dist] : {std::pair{&rig.camera_matrix, &rig.dist_coeffs},
                                      std::pair{&rig.projector_matrix, &rig.projector_dist_coeffs}}) {
@@ -253,16 +252,16 @@ std::vector<double> rig_parameters(const StereoRig& rig) {
   return p;
 }
 
-void set_rig_parameters(StereoRig& rig, const std::vector<double>& p) {
-  const int g = rig_parameter_count(rig), block = (g - 6) / 2;
-  if (static_cast<int>(p.size()) != g) {
-    throw std::invalid_argument("set_rig_parameters: " + std::to_string(p.size()) + " parameters for a rig of " +
-                                std::to_string(g));
+void set_rig_parameters(StereoRig& rig, const std::vector<double>& p, int dist_size) {
+  const int block = 4 + dist_size;
+  if (static_cast<int>(p.size()) < 2 * block + 6) {
+    throw std::invalid_argument("set_rig_parameters: " + std::to_string(p.size()) + " parameters, fewer than a rig's " +
+                                std::to_string(2 * block + 6));
   }
   for (auto [matrix, dist, at] : {std::tuple{&rig.camera_matrix, &rig.dist_coeffs, 0},
                                   std::tuple{&rig.projector_matrix, &rig.projector_dist_coeffs, block}}) {
     *matrix = (cv::Mat_<double>(3, 3) << p[at], 0, p[at + 2], 0, p[at + 1], p[at + 3], 0, 0, 1);
-    *dist = cv::Mat(1, block - 4, CV_64F);
+    *dist = cv::Mat(1, dist_size, CV_64F);
     std::copy(p.begin() + at + 4, p.begin() + at + block, dist->begin<double>());
   }
   const double* pose = p.data() + 2 * static_cast<std::size_t>(block);  // rotation vector, then T

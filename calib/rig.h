@@ -65,10 +65,12 @@ struct StereoRig {
 // G, the size of RigUncertainty::parameter_covariance for this rig's distortion model: 2 (4 + N) + 6 with N the
 // camera's distortion coefficients (the projector has as many).
 int rig_parameter_count(const StereoRig& rig);
-// The rig's G parameters in that order, and the rig with them set (intrinsics, distortion, R from its rotation vector,
-// T; the derived keys are left to compute_stereo_geometry). std::invalid_argument when there are not G.
-std::vector<double> rig_parameters(const StereoRig& rig);
-void set_rig_parameters(StereoRig& rig, const std::vector<double>& parameters);
+// The rig's parameters in that order with `dist_size` coefficients per device (those beyond a device's own are 0),
+// and the rig with them set from the first 2 (4 + dist_size) + 6 of `parameters` (a joint adjustment's board poses
+// may follow): intrinsics, distortion, R from its rotation vector, T; the derived keys are left to
+// compute_stereo_geometry. std::invalid_argument when there are fewer.
+std::vector<double> rig_parameters(const StereoRig& rig, int dist_size);
+void set_rig_parameters(StereoRig& rig, const std::vector<double>& parameters, int dist_size);
 
 // rig.yaml's `format` and `version` keys; files without them (version 1) are still read.
 inline constexpr const char* kRigFormat = "rfrecon-rig";

@@ -11,14 +11,6 @@
 namespace rfrecon::calib {
 
 namespace {
-// Intrinsics as fx, fy, cx, cy followed by the full distortion vector of the model.
-std::vector<double> device_parameters(const cv::Mat& matrix, const cv::Mat& dist, int dist_size) {
-  std::vector<double> p = {matrix.at<double>(0, 0), matrix.at<double>(1, 1), matrix.at<double>(0, 2),
-                           matrix.at<double>(1, 2)};
-  for (int i = 0; i < dist_size; ++i) p.push_back(i < static_cast<int>(dist.total()) ? dist.at<double>(i) : 0.0);
-  return p;
-}
-
 JointLayout layout_of(const std::vector<StereoCorners>& corners, DistortionModel model) {
   JointLayout layout;
   layout.dist_size = distortion_vector_size(model);
@@ -30,13 +22,7 @@ JointLayout layout_of(const std::vector<StereoCorners>& corners, DistortionModel
 std::vector<double> fitted_parameters(const StereoRig& rig, const std::vector<std::vector<cv::Point3f>>& object_points,
                                       const std::vector<StereoCorners>& corners, const JointProblem& problem) {
   const JointLayout& layout = problem.layout();
-  std::vector<double> p = device_parameters(rig.camera_matrix, rig.dist_coeffs, layout.dist_size);
-  const auto projector = device_parameters(rig.projector_matrix, rig.projector_dist_coeffs, layout.dist_size);
-  p.insert(p.end(), projector.begin(), projector.end());
-  cv::Vec3d om;
-  cv::Rodrigues(rig.proj_from_cam_rotation, om);
-  for (int i = 0; i < 3; ++i) p.push_back(om[i]);
-  for (int i = 0; i < 3; ++i) p.push_back(rig.proj_from_cam_translation_mm.at<double>(i));
+  std::vector<double> p = rig_parameters(rig, layout.dist_size);
   for (int v = 0; v < layout.views; ++v) {
     cv::Vec3d rvec;
     cv::Vec3d tvec;
@@ -129,14 +115,7 @@ double adjust_stereo(StereoRig& rig, const std::vector<std::vector<cv::Point3f>>
   const JointProblem problem(object_points, corners, layout);
   std::vector<double> p = fitted_parameters(rig, object_points, corners, problem);
   const double cost = problem.adjust(p, joint_columns(layout, model));
-  for (auto [matrix, dist, block] :
-       {std::tuple{&rig.camera_matrix, &rig.dist_coeffs, 0},
-        std::tuple{&rig.projector_matrix, &rig.projector_dist_coeffs, layout.device_block()}}) {
-    *matrix = (cv::Mat_<double>(3, 3) << p[block], 0, p[block + 2], 0, p[block + 1], p[block + 3], 0, 0, 1);
-    *dist = cv::Mat(1, layout.dist_size, CV_64F, p.data() + block + 4).clone();
-  }
-  cv::Rodrigues(cv::Vec3d(p[layout.om()], p[layout.om() + 1], p[layout.om() + 2]), rig.proj_from_cam_rotation);
-  rig.proj_from_cam_translation_mm = (cv::Mat_<double>(3, 1) << p[layout.t()], p[layout.t() + 1], p[layout.t() + 2]);
+  set_rig_parameters(rig, p, layout.dist_size);
   const std::size_t count = problem.residuals(p).size();
   return count > 0 ? std::sqrt(cost / static_cast<double>(count)) : 0.0;
 }

@@ -157,7 +157,8 @@ cv::Mat calibration_depth_sigma(const calib::StereoRig& rig, const cv::Mat& cova
     for (const cv::Point2f& r : ray) nodes.emplace_back(r.x / w, r.y / w, 1.0 / w);
   }
   const std::vector<cv::Point2d> projector_px = project(nodes, rig);
-  const std::vector<double> nominal = calib::rig_parameters(rig);
+  const int dist_size = static_cast<int>(rig.dist_coeffs.total());
+  const std::vector<double> nominal = calib::rig_parameters(rig, dist_size);
   // (sigma / z)^2 at each node: what the grid interpolates (exact between nodes for a scale error, sigma ~ z).
   std::vector<double> variance(nodes.size(), 0.0);
   // Forward differences: one sigma moves a depth by 1e-4 of itself or less, where the second order is negligible.
@@ -165,7 +166,7 @@ cv::Mat calibration_depth_sigma(const calib::StereoRig& rig, const cv::Mat& cova
     std::vector<double> moved = nominal;
     for (int i = 0; i < g; ++i) moved[i] += step[i];
     calib::StereoRig moved_rig = rig;
-    calib::set_rig_parameters(moved_rig, moved);
+    calib::set_rig_parameters(moved_rig, moved, dist_size);
     const std::vector<double> depths = triangulated_depths(grid, moved_rig, projector_px);
     for (std::size_t n = 0; n < nodes.size(); ++n) {
       const double relative_change = (depths[n] - nodes[n].z) / nodes[n].z;

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "host/core/parallel_rows.h"
+#include "host/transport/dot_rows.h"
 
 namespace rfrecon::depth {
 
@@ -24,8 +25,7 @@ cv::Vec2d column_gradient(const cv::Mat& proj_grid, double x, double y) {
 
 cv::Mat rectified_column_sigma_px(const transport::CompressedTransport& transport, const Rectification& rectification) {
   const capture::CameraNoise& noise = transport.camera_noise;
-  const bool centroids = transport.setup.family == capture::kDefaultFamily && transport.setup.dot_spacing > 0;
-  if (!noise.known() || !centroids) return {};
+  if (!noise.known() || !transport::correspondences_are_centroids(transport.setup)) return {};
   const cv::Size size = transport.setup.camera_size;
   const int width = transport.setup.projector_size.width;
   const int k_max = transport.k();

@@ -41,8 +41,7 @@ transport::CompressedTransport noisy_copy(const transport::CompressedTransport& 
 cv::Mat sampled_observation_sigma(const DepthMethod& method, const MethodScan& scan, const calib::StereoRig& rig,
                                   int samples) {
   const transport::CompressedTransport& t = scan.transport;
-  const bool centroids = t.setup.family == capture::kDefaultFamily && t.setup.dot_spacing > 0;
-  if (samples < 2 || !t.camera_noise.known() || !centroids) return {};
+  if (samples < 2 || !t.camera_noise.known() || !transport::correspondences_are_centroids(t.setup)) return {};
   const cv::Size size = t.setup.camera_size;
   cv::Mat sum = cv::Mat::zeros(size, CV_64F), sum_squares = sum.clone(), count = cv::Mat::zeros(size, CV_32S);
   for (int sample = 0; sample < samples; ++sample) {

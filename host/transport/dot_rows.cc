@@ -94,4 +94,8 @@ void finish_rows(CompressedTransport& t, bool centroids) {
   }
 }
 
+bool correspondences_are_centroids(const TransportSetup& setup) {
+  return setup.family == capture::kDefaultFamily && setup.dot_spacing > 0;
+}
+
 }  // namespace rfrecon::transport

@@ -22,4 +22,8 @@ void add_dot_frame_to_rows(CompressedTransport& t, int offset_x, int offset_y, c
 // correspondence becomes their row's weighted centroid.
 void finish_rows(CompressedTransport& t, bool centroids);
 
+// Whether a T of `setup` has its rows' dot centroids as correspondences: the graycode family's with the dot grid
+// (other families keep their own, e.g. the phases).
+bool correspondences_are_centroids(const TransportSetup& setup);
+
 }  // namespace rfrecon::transport

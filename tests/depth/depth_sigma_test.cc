@@ -40,7 +40,7 @@ calib::StereoRig small_rig(double baseline_x_mm = 20.0, double baseline_y_mm = -
 
 // The rig with parameter vector p (calib::RigUncertainty::parameter_covariance's order).
 calib::StereoRig rig_of(calib::StereoRig rig, const std::vector<double>& p) {
-  calib::set_rig_parameters(rig, p);
+  calib::set_rig_parameters(rig, p, 5);
   calib::compute_stereo_geometry(rig);
   return rig;
 }
@@ -102,7 +102,7 @@ cv::Mat slanted_depth(cv::Size size) {
 
 TEST(CalibrationSigmaTest, PredictsTheSpreadOfTheTriangulationOverRigsDrawnFromTheCovariance) {
   const calib::StereoRig rig = small_rig();
-  const std::vector<double> p0 = calib::rig_parameters(rig);
+  const std::vector<double> p0 = calib::rig_parameters(rig, 5);
   const int g = calib::rig_parameter_count(rig);
   ASSERT_EQ(g, static_cast<int>(p0.size()));
   // Standard deviations like a calibration's (focal lengths 0.1 %, principal points 0.3 px, distortion, angles 0.2
