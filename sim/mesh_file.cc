@@ -31,6 +31,7 @@ std::string limit_text() {
 
 // One PLY property: a scalar of `value_bytes`, or a list whose length takes `count_bytes` before its items.
 struct PlyProperty {
+  std::string name;
   int count_bytes = 0;  // 0: a scalar
   bool count_signed = false;
   int value_bytes = 0;
@@ -63,6 +64,15 @@ int ply_type_bytes(const std::string& type, bool& is_signed) {
   return 0;
 }
 
+// Whether `name` is an identifier: a letter or "_", then letters, digits or "_".
+bool is_identifier(const std::string& name) {
+  return !name.empty() && std::isdigit(static_cast<unsigned char>(name[0])) == 0 &&
+         std::all_of(name.begin(), name.end(),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; });
+}
+
+// "property TYPE NAME" or "property list COUNT_TYPE TYPE NAME", nothing after the name: assimp splits a longer line
+// its own way (a list read where this reading saw a scalar).
 PlyProperty parse_ply_property(std::istringstream& words, const Fail& fail) {
   std::string type;
   words >> type;
@@ -78,17 +88,26 @@ PlyProperty parse_ply_property(std::istringstream& words, const Fail& fail) {
   }
   property.value_bytes = ply_type_bytes(type, is_signed);
   if (property.value_bytes == 0) fail("unknown property type '" + excerpt(type) + "'");
+  std::string more;
+  words >> property.name >> more;
+  if (!is_identifier(property.name) || !more.empty()) {
+    fail("a property line ends in '" + excerpt(property.name + (more.empty() ? "" : " " + more)) +
+         "', not one name (letters, digits and _, not first a digit)");
+  }
   return property;
 }
 
 // An element count: decimal digits, at most kMaxMeshElements. The element's name must be an identifier (a letter or
 // "_", then letters, digits or "_"): assimp reads the count of an element it does not know from the start of its
-// name, so "123face 4" would declare 123 elements there and 4 here.
+// name, so "123face 4" would declare 123 elements there and 4 here. And it must be vertex or face: after an element
+// assimp does not know, it read a binary body from another offset (a list of 4 billion indices from a 124-byte body).
 std::uint64_t parse_ply_count(const std::string& name, const std::string& count, const Fail& fail) {
-  if (name.empty() || std::isdigit(static_cast<unsigned char>(name[0])) != 0 ||
-      !std::all_of(name.begin(), name.end(),
-                   [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; })) {
+  if (!is_identifier(name)) {
     fail("the element name '" + excerpt(name) + "' is not an identifier (letters, digits and _, not first a digit)");
+  }
+  if (name != "vertex" && name != "face") {
+    fail("the element '" + excerpt(name) +
+         "' is not read: a mesh is its 'vertex' and 'face' elements only (assimp misreads a body after others)");
   }
   if (count.empty() || count.size() > 19 || !std::all_of(count.begin(), count.end(), [](char c) {
         return std::isdigit(static_cast<unsigned char>(c)) != 0;
@@ -121,22 +140,41 @@ PlyHeader parse_ply_header(const std::string& bytes, const Fail& fail) {
     words >> keyword;
     if (line_number == 1) {
       if (line != "ply") fail("the first line is not 'ply'");
+    } else if ((line_number == 2) != (keyword == "format")) {
+      // assimp takes the format from the line after "ply" alone.
+      fail("header line " + std::to_string(line_number) + " '" + excerpt(line) +
+           "': the format line is the second line, and only it");
     } else if (line == "end_header") {
       header.body_start = line_start;
       if (header.format.empty()) fail("the header has no format line");
       return header;
     } else if (keyword == "format") {
-      words >> header.format;
+      std::string version, more;
+      words >> header.format >> version >> more;
       if (header.format != "ascii" && header.format != "binary_little_endian" && header.format != "binary_big_endian") {
         fail("unknown format '" + excerpt(header.format) + "'");
       }
+      if (version != "1.0" || !more.empty()) fail("the format line '" + excerpt(line) + "' is not of version 1.0");
     } else if (keyword == "element") {
-      std::string name, count;
-      words >> name >> count;
-      header.elements.push_back({name, parse_ply_count(name, count, fail), {}});
+      std::string name, count, more;
+      words >> name >> count >> more;
+      if (!more.empty()) fail("the element line '" + excerpt(line) + "' holds more than a name and a count");
+      const std::uint64_t declared = parse_ply_count(name, count, fail);
+      for (const PlyElement& element : header.elements) {
+        if (element.name == name) fail("a second '" + name + "' element");
+      }
+      header.elements.push_back({name, declared, {}});
     } else if (keyword == "property") {
       if (header.elements.empty()) fail("a property before any element");
-      header.elements.back().properties.push_back(parse_ply_property(words, fail));
+      PlyElement& element = header.elements.back();
+      const PlyProperty property = parse_ply_property(words, fail);
+      if (property.count_bytes != 0 && element.name != "face") {
+        fail("the list property '" + property.name + "' of a '" + element.name + "' element (lists are face's)");
+      }
+      for (const PlyProperty& other : element.properties) {
+        if (other.name == property.name) fail("a second property '" + property.name + "' in '" + element.name + "'");
+      }
+      element.properties.push_back(property);
     } else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty()) {
       fail("header line " + std::to_string(line_number) + " '" + excerpt(line) + "' is not a PLY header line");
     }
@@ -319,18 +357,23 @@ bool obj_word_fits(const std::string& word, bool corner) {
          (!corner || std::count(word.begin(), word.end(), '/') <= 2);
 }
 
-// The geometry of an OBJ, checked line by line, as the text assimp is given: assimp's OBJ parser crashes on some
-// malformed text (a NUL even in a comment, a material library line continued with "\"), so it reads only the
-// statements v, vt, vn, vp (numbers) and f, l, p (corners), one per line, each with a number of values it takes.
-// Comments and o, g, s, usemtl, mtllib are dropped (rfrecon takes the geometry only); no control bytes but tabs, only
-// ASCII outside comments; lines joined where one ends in "\". Counts the vertices and the triangles of the faces.
+// The geometry of an OBJ, checked line by line, as the text assimp is given: its vertices' positions and its faces'
+// vertex indices only, one per line, so that few of assimp's paths see the file: its OBJ parser crashes on some
+// malformed text (a NUL even in a comment, a material library line continued with "\\"), and its importer wrote past
+// its buffers on lines and points mixed with faces (assimp pull requests 1654 and 5112, the latter after Debian's
+// 5.2.5). The statements v, vt, vn, vp (numbers) and f, l, p (corners) must each hold a number of values it takes;
+// vt, vn, vp, l, p are then dropped with comments and o, g, s, usemtl, mtllib (rfrecon takes the triangles; materials
+// come from the scene), and each face corner keeps its vertex index, which must name a vertex of the file (1 to their
+// count, or -1 back to the first; made absolute). No control bytes but tabs, only ASCII outside comments; lines joined
+// where one ends in "\\".
 std::string obj_geometry(const std::string& bytes, const Fail& fail) {
   // Each statement's keyword with the fewest and most values it may hold.
   static const std::map<std::string, std::pair<std::uint64_t, std::uint64_t>> kArity{
       {"v", {3, 7}},          {"vt", {1, 3}},         {"vn", {3, 3}},        {"vp", {1, 3}},
       {"f", {3, UINT64_MAX}}, {"l", {2, UINT64_MAX}}, {"p", {1, UINT64_MAX}}};
   static const std::set<std::string> kDropped{"o", "g", "s", "usemtl", "mtllib"};
-  std::uint64_t vertices = 0, triangles = 0;
+  std::uint64_t vertices = 0, triangles = 0, highest_index = 0;
+  int highest_index_line = 0;
   std::string geometry, statement;
   std::istringstream lines(bytes);
   int line_number = 0;
@@ -359,16 +402,32 @@ std::string obj_geometry(const std::string& bytes, const Fail& fail) {
       fail("line " + std::to_string(line_number) + ": '" + excerpt(keyword) + "' is not an OBJ statement read");
     }
     const bool corners = keyword == "f" || keyword == "l" || keyword == "p";
+    const bool kept = keyword == "v" || keyword == "f";
     std::uint64_t count = 0;
-    geometry += keyword;
+    if (kept) geometry += keyword;
     for (std::string word; words >> word; ++count) {
       if (!obj_word_fits(word, corners)) {
         fail("line " + std::to_string(line_number) + ": '" + excerpt(word) + "' is not " +
              (corners ? "a face corner" : "a number"));
       }
-      geometry += ' ' + word;
+      if (keyword == "v" && count < 3) geometry += ' ' + word;
+      if (keyword != "f") continue;
+      const std::string index = word.substr(0, word.find('/'));
+      const bool relative = !index.empty() && index[0] == '-';
+      const std::string digits = index.substr(relative ? 1 : 0);
+      const std::uint64_t magnitude =
+          digits.empty() || digits.find('-') != std::string::npos || digits.size() > 10 ? 0 : std::stoull(digits);
+      if (magnitude == 0 || (relative && magnitude > vertices)) {
+        fail("line " + std::to_string(line_number) + ": the face corner '" + excerpt(word) +
+             "' names no vertex (1 to the vertices' count, or -1 back to -" + std::to_string(vertices) + ")");
+      }
+      if (!relative && magnitude > highest_index) {
+        highest_index = magnitude;
+        highest_index_line = line_number;
+      }
+      geometry += ' ' + (relative ? std::to_string(vertices + 1 - magnitude) : digits);
     }
-    geometry += '\n';
+    if (kept) geometry += '\n';
     if (count < arity->second.first || count > arity->second.second) {
       fail("line " + std::to_string(line_number) + ": '" + keyword + "' with " + std::to_string(count) +
            " values (it takes " + std::to_string(arity->second.first) +
@@ -379,6 +438,10 @@ std::string obj_geometry(const std::string& bytes, const Fail& fail) {
   }
   if (vertices > kMaxMeshElements) fail(std::to_string(vertices) + " vertices, " + limit_text());
   if (triangles > kMaxMeshElements) fail("its faces make " + std::to_string(triangles) + " triangles, " + limit_text());
+  if (highest_index > vertices) {
+    fail("line " + std::to_string(highest_index_line) + ": a face names vertex " + std::to_string(highest_index) +
+         " of " + std::to_string(vertices));
+  }
   return geometry;
 }
 

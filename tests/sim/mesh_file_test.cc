@@ -96,6 +96,28 @@ TEST_F(MeshFileTest, TextAssimpMisreadsIsRefused) {
   std::string digits_name = ply_header("ascii", "3", "1") + kTriangleVertices + "3 0 1 2\n";
   digits_name.replace(digits_name.find("element face"), 12, "element 2222222222face");
   EXPECT_THAT(mesh_error(write("digits.ply", digits_name)), HasSubstr("is not an identifier"));
+  // After an element it does not know, assimp read a binary body from another offset.
+  std::string edges = ply_header("binary_little_endian", "3", "0");
+  edges.replace(edges.find("element face"), 12, "element edge");
+  EXPECT_THAT(mesh_error(write("edge.ply", edges)), HasSubstr("the element 'edge' is not read"));
+  // Header lines are exactly what PLY 1.0 defines: assimp split longer ones its own way, and a second vertex element
+  // or a list in one made it read the body elsewhere than this check walked it.
+  const std::string header = ply_header("binary_big_endian", "3", "0");
+  const auto with = [&](const std::string& from, const std::string& to) {
+    std::string text = header;
+    return text.replace(text.find(from), from.size(), to);
+  };
+  EXPECT_THAT(mesh_error(write("words.ply", with("property float y", "property float y list uchar int z"))),
+              HasSubstr("a property line ends in 'y list'"));
+  EXPECT_THAT(mesh_error(write("twice.ply", with("element face 0", "element vertex 4"))),
+              HasSubstr("a second 'vertex' element"));
+  EXPECT_THAT(mesh_error(write("list.ply", with("property float z", "property list uchar float z"))),
+              HasSubstr("the list property 'z' of a 'vertex' element"));
+  EXPECT_THAT(mesh_error(write("same.ply", with("property float y", "property float x"))),
+              HasSubstr("a second property 'x' in 'vertex'"));
+  EXPECT_THAT(mesh_error(write("version.ply", with(" 1.0", " 1ed"))), HasSubstr("is not of version 1.0"));
+  EXPECT_THAT(mesh_error(write("format.ply", with("end_header", "format ascii 1.0\nend_header"))),
+              HasSubstr("the format line is the second line, and only it"));
   // A NUL in an OBJ comment crashed assimp's OBJ parser; UTF-8 in a comment is text and loads.
   const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   EXPECT_THAT(mesh_error(write("nul.obj", std::string("# a\0b\nmtllib x.mtl\n", 18) + triangle)),
@@ -131,6 +153,22 @@ TEST_F(MeshFileTest, ObjGeometryOnlyReachesAssimp) {
   EXPECT_THAT(mesh_error(write("short_v.obj", "v 15\n" + quad + "f 1 2 3\n")),
               HasSubstr("line 1: 'v' with 1 values (it takes 3 to 7)"));
   EXPECT_THAT(mesh_error(write("short_f.obj", quad + "f 1 2\n")), HasSubstr("line 5: 'f' with 2 values (it takes 3"));
+  // Normals, texture coordinates, lines and points are checked, then dropped (assimp's importer wrote past its buffers
+  // on lines mixed with faces): the faces keep their vertex indices, relative ones made absolute.
+  const fs::path mixed = write("mixed.obj", quad + "v 0 0 1 1 0 0\nvt 0 0\nvn 0 0 1\nvp 0.5\nl 1/1 2/1 3/1\np 1 2\n" +
+                                                "f 1/1/1 2//1 3/1\nf -5 -3 -2\n");
+  const auto mesh = load_mesh(mixed.string(), 1.0, "f");
+  ASSERT_EQ(mesh->triangles.size(), 2u);
+  const Eigen::Vector3i& relative = mesh->triangles[1];
+  EXPECT_EQ(mesh->vertices[relative[0]], Eigen::Vector3d(0, 0, 0));
+  EXPECT_EQ(mesh->vertices[relative[1]], Eigen::Vector3d(1, 1, 0));
+  EXPECT_EQ(mesh->vertices[relative[2]], Eigen::Vector3d(0, 1, 0));
+  // Every face corner names a vertex of the file.
+  EXPECT_THAT(mesh_error(write("zero.obj", quad + "f 0 1 2\n")),
+              HasSubstr("line 5: the face corner '0' names no vertex"));
+  EXPECT_THAT(mesh_error(write("back.obj", quad + "f -5 1 2\n")), HasSubstr("-1 back to -4"));
+  EXPECT_THAT(mesh_error(write("past.obj", quad + "f 1 2 5/1\n")), HasSubstr("line 5: a face names vertex 5 of 4"));
+  EXPECT_THAT(mesh_error(write("slash.obj", quad + "f /1 2 3\n")), HasSubstr("'/1' names no vertex"));
 }
 
 TEST_F(MeshFileTest, TrianglesAfterTriangulationAreCapped) {
