@@ -5,9 +5,10 @@
 # over the seeds with depth_sigma_observation.
 # Calibrations: for pose seed 1..POSE_SEEDS, checkerboard-poses with every board pose moved at random (up to 15 mm
 # across, 30 mm in depth, 4 degrees about each axis; the noise seed is the pose seed) is rendered and calibrated; each
-# rig reconstructs seed 1's T.h5 of each scene with each method, and the spread over the rigs is compared with
-# depth_sigma_calibration. Prints one JSON line per scene, method and part. About 50 minutes on a 2-core machine
-# with 30 pose seeds, most of it the calibrations.
+# rig reconstructs seed 1's T.h5 of each scene with each method (--sigma-samples 8: the integration and the fusion
+# rerun on the rig moved along its covariance's principal directions), and the spread over the rigs is compared with
+# depth_sigma_calibration. Prints one JSON line per scene, method and part. About 70 minutes on a 2-core machine
+# with 30 pose seeds, most of it the calibrations and the reruns.
 # Usage: bash scripts/depth_sigma_monte_carlo.sh OUT_DIR [FRAME_SEEDS] [POSE_SEEDS]   (default 20 and 10)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -68,7 +69,7 @@ for scene in cube-anisotropic board-plane; do
     for seed in $(seq 1 "$pose_seeds"); do
       r=$out/$scene/calib_${seed}_$method
       [[ -f $r/points.ply ]] || "$rfrecon" -q reconstruct "$out/$scene/s1/T.h5" --calib "$out/calib/seed_$seed/rig.yaml" \
-        --method "$method" -o "$r" --force >/dev/null
+        --method "$method" --sigma-samples 8 -o "$r" --force >/dev/null
       dirs+=("$r")
     done
     printf '{"scene": "%s", "method": "%s", "part": "calibration", "spread": %s}\n' "$scene" "$method" \

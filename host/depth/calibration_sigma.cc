@@ -89,7 +89,8 @@ std::vector<double> triangulated_depths(const Grid& grid, const calib::StereoRig
   return z;
 }
 
-// Principal directions of the covariance scaled by their standard deviations: columns whose outer products sum to it.
+}  // namespace
+
 std::vector<std::vector<double>> principal_steps(const cv::Mat& covariance) {
   const int g = covariance.rows;
   std::vector<int> free;
@@ -119,8 +120,6 @@ std::vector<std::vector<double>> principal_steps(const cv::Mat& covariance) {
   }
   return steps;
 }
-
-}  // namespace
 
 cv::Mat rig_parameter_covariance(const calib::StereoRig& rig) {
   const calib::RigUncertainty& u = rig.uncertainty;

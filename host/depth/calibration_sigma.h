@@ -3,6 +3,8 @@
 // with the rig (a bias that does not average out over scans), unlike the observation's part (observation_sigma.h).
 #pragma once
 
+#include <vector>
+
 #include <opencv2/core.hpp>
 
 #include "calib/rig.h"
@@ -12,6 +14,10 @@ namespace rfrecon::depth {
 // The rig's parameter covariance, G x G (calib::rig_parameter_count): its parameter_covariance, or for a rig written
 // before it was kept a diagonal one from its standard deviations; empty for a rig without uncertainty (ground truth).
 cv::Mat rig_parameter_covariance(const calib::StereoRig& rig);
+
+// The principal directions of `covariance` (G x G), each scaled by its standard deviation: G-vectors whose outer
+// products sum to the covariance (parameters of zero variance left out).
+std::vector<std::vector<double>> principal_steps(const cv::Mat& covariance);
 
 // One standard deviation (mm) of the depth of each point of `depth_mm` (CV_32F, the camera frame's z, NaN where none)
 // that the calibration causes: the same correspondence (camera pixel, and the projector point the rig projects the

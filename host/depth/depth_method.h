@@ -27,8 +27,9 @@ struct DepthOptions {
   IntegrationOptions integration;
   FusionOptions fusion;
   cl::EntryChoice entries;  // kernel entry per device (default auto: cl::preferred_entry of each)
-  // Noisy copies of T a method without a closed form for the frames' part of its depth sigma reruns on
-  // (host/depth/sampled_sigma.h); 0: that part is left unknown.
+  // Noisy copies of T a method without a closed form for the frames' part of its depth sigma reruns on, and then also
+  // reruns on moved rigs for the calibration's part (host/depth/sampled_sigma.h); 0: the frames' part is left unknown
+  // and the calibration's is the triangulation's.
   int sigma_samples = 0;
 };
 

@@ -36,7 +36,8 @@ const std::vector<DepthOptionSpec>& depth_option_table() {
        [](DepthOptions& o) { return &o.fusion.sigma_step_mm; }, nullptr},
       {"sigma-samples",
        "Noisy copies of T the method reruns on to measure the frames' part of each point's depth sigma where it has "
-       "no closed form (integrate, fused; 0: left unknown)",
+       "no closed form (integrate, fused; 0: left unknown); with a calibrated rig, also reruns it on the rig moved "
+       "along its covariance for the calibration's part",
        0, 64, nullptr, [](DepthOptions& o) { return &o.sigma_samples; }},
   };
   return table;

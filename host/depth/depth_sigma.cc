@@ -18,37 +18,47 @@ nlohmann::json spread(const cv::Mat& sigma) {
   if (std::isnan(median)) return nullptr;
   return {{"median", median}, {"p95", high}};
 }
+
+// `part` where the depth exists and the part is known, NaN elsewhere.
+cv::Mat where_depth(const SigmaPart& part, const cv::Mat& depth_mm) {
+  cv::Mat sigma(depth_mm.size(), CV_32F, cv::Scalar(kUnknownSigma));
+  if (!part.sigma_mm.empty()) part.sigma_mm.copyTo(sigma, depth_mm > 0.0f);
+  return sigma;
+}
 }  // namespace
 
-void add_depth_sigma(outputs::Reconstruction& maps, const cv::Mat& z_rect_mm, const cv::Mat& observation_rect_sigma_mm,
-                     const std::string& observation_source, const calib::StereoRig& rig, nlohmann::json& summary) {
-  const cv::Mat& depth = maps.depth_mm;
+SigmaPart first_order_calibration_sigma(const calib::StereoRig& rig, const cv::Mat& depth_mm) {
   const cv::Mat covariance = rig_parameter_covariance(rig);
-  maps.depth_sigma_calibration_mm = covariance.empty() ? cv::Mat(depth.size(), CV_32F, cv::Scalar(0.0f))
-                                                       : calibration_depth_sigma(rig, covariance, depth);
-  maps.depth_sigma_observation_mm = cv::Mat(depth.size(), CV_32F);
-  maps.depth_sigma_mm = cv::Mat(depth.size(), CV_32F);
-  for_each_row(depth.rows, [&](int y) {
-    for (int x = 0; x < depth.cols; ++x) {
-      const float z = depth.at<float>(y, x), z_rect = z_rect_mm.at<float>(y, x);
-      float& calibration = maps.depth_sigma_calibration_mm.at<float>(y, x);
-      float& observation = maps.depth_sigma_observation_mm.at<float>(y, x);
-      if (!(z > 0.0f)) calibration = kUnknownSigma;
-      observation = observation_rect_sigma_mm.empty() || !(z > 0.0f)
-                        ? kUnknownSigma
-                        : observation_rect_sigma_mm.at<float>(y, x) * z / z_rect;
-      maps.depth_sigma_mm.at<float>(y, x) = std::sqrt(calibration * calibration + observation * observation);
+  if (covariance.empty()) {
+    return {cv::Mat(depth_mm.size(), CV_32F, cv::Scalar(0.0f)), "none: the rig has no uncertainty (0)"};
+  }
+  return {calibration_depth_sigma(rig, covariance, depth_mm),
+          rig.uncertainty.parameter_covariance.empty()
+              ? "the rig's standard deviations (no covariance in the file), through the triangulation"
+              : "the rig's parameter covariance, through the triangulation"};
+}
+
+cv::Mat camera_z_sigma(const cv::Mat& rect_sigma_mm, const cv::Mat& z_rect_mm, const cv::Mat& depth_mm) {
+  if (rect_sigma_mm.empty()) return {};
+  cv::Mat sigma(depth_mm.size(), CV_32F);
+  for_each_row(depth_mm.rows, [&](int y) {
+    for (int x = 0; x < depth_mm.cols; ++x) {
+      sigma.at<float>(y, x) = rect_sigma_mm.at<float>(y, x) * depth_mm.at<float>(y, x) / z_rect_mm.at<float>(y, x);
     }
   });
-  const bool full = !rig.uncertainty.parameter_covariance.empty();
-  summary["depth_sigma_mm"] = {
-      {"total", spread(maps.depth_sigma_mm)},
-      {"calibration", spread(maps.depth_sigma_calibration_mm)},
-      {"observation", spread(maps.depth_sigma_observation_mm)},
-      {"calibration_source", covariance.empty() ? "none: the rig has no uncertainty (0)"
-                             : full             ? "the rig's parameter covariance"
-                                                : "the rig's standard deviations (no covariance in the file)"},
-      {"observation_source", observation_source}};
+  return sigma;
+}
+
+void add_depth_sigma(outputs::Reconstruction& maps, const SigmaPart& calibration, const SigmaPart& observation,
+                     nlohmann::json& summary) {
+  maps.depth_sigma_calibration_mm = where_depth(calibration, maps.depth_mm);
+  maps.depth_sigma_observation_mm = where_depth(observation, maps.depth_mm);
+  cv::magnitude(maps.depth_sigma_calibration_mm, maps.depth_sigma_observation_mm, maps.depth_sigma_mm);
+  summary["depth_sigma_mm"] = {{"total", spread(maps.depth_sigma_mm)},
+                               {"calibration", spread(maps.depth_sigma_calibration_mm)},
+                               {"observation", spread(maps.depth_sigma_observation_mm)},
+                               {"calibration_source", calibration.source},
+                               {"observation_source", observation.source}};
 }
 
 }  // namespace rfrecon::depth

@@ -12,12 +12,24 @@
 
 namespace rfrecon::depth {
 
-// Fills maps.depth_sigma_* from maps.depth_mm (the camera frame's z): the calibration's part from the rig's
-// covariance (0 for a rig without uncertainty, a ground truth), the observation's from `observation_rect_sigma_mm`
-// (the method's, along the rectified axis at the pixel's depth z_rect_mm; empty: not propagated by the method, NaN),
-// scaled to the camera's z; the total where both are known. Adds "depth_sigma_mm" to `summary`: median and 95th
-// percentile of each part (mm) and where each came from (the observation's: `observation_source`).
-void add_depth_sigma(outputs::Reconstruction& maps, const cv::Mat& z_rect_mm, const cv::Mat& observation_rect_sigma_mm,
-                     const std::string& observation_source, const calib::StereoRig& rig, nlohmann::json& summary);
+// One part of the depth sigma: per camera pixel (CV_32F, mm of the camera frame's z, NaN where unknown; empty: unknown
+// everywhere) and where it came from, in words (summary.json).
+struct SigmaPart {
+  cv::Mat sigma_mm;
+  std::string source;
+};
+
+// The calibration's part to first order (calibration_depth_sigma) from the rig's covariance, at each pixel of
+// depth_mm (the camera frame's z); 0 for a rig without uncertainty (a ground truth).
+SigmaPart first_order_calibration_sigma(const calib::StereoRig& rig, const cv::Mat& depth_mm);
+
+// A sigma along the rectified axis at the pixel's depth z_rect_mm, scaled to the camera frame's z depth_mm.
+cv::Mat camera_z_sigma(const cv::Mat& rect_sigma_mm, const cv::Mat& z_rect_mm, const cv::Mat& depth_mm);
+
+// Fills maps.depth_sigma_calibration_mm and _observation_mm from the parts (NaN where maps.depth_mm is), and
+// maps.depth_sigma_mm, their root sum of squares where both are known. Adds "depth_sigma_mm" to `summary`: median and
+// 95th percentile of each (mm) and where each part came from.
+void add_depth_sigma(outputs::Reconstruction& maps, const SigmaPart& calibration, const SigmaPart& observation,
+                     nlohmann::json& summary);
 
 }  // namespace rfrecon::depth

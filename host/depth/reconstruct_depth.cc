@@ -10,6 +10,7 @@
 #include "host/core/errors.h"
 #include "host/core/parallel_rows.h"
 #include "host/core/stage_clock.h"
+#include "host/depth/calibration_sigma.h"
 #include "host/depth/camera_grid.h"
 #include "host/depth/depth_sigma.h"
 #include "host/depth/pixel_losses.h"
@@ -54,6 +55,31 @@ const DepthMethod& check_request(const transport::CompressedTransport& transport
                      "capture has Gray code only (dot_spacing 0): use --method triangulate, or capture with dots");
   }
   return method;
+}
+
+// The calibration's part: to first order through the triangulation, or with `rerun`, by rerunning the method on the
+// rig moved along each principal direction of its covariance.
+SigmaPart calibration_sigma(const DepthMethod& method, const MethodScan& scan, const calib::StereoRig& rig,
+                            const cv::Mat& depth_mm, bool rerun) {
+  SigmaPart part = first_order_calibration_sigma(rig, depth_mm);
+  const cv::Mat covariance = rig_parameter_covariance(rig);
+  if (!rerun || covariance.empty()) return part;
+  const auto directions = principal_steps(covariance).size();
+  return {rerun_calibration_sigma(method, scan, rig, covariance, depth_mm, part.sigma_mm),
+          part.source.substr(0, part.source.find(", through")) + ", through the method rerun on the rig moved along " +
+              std::to_string(directions) + " principal directions"};
+}
+
+// The frames' part: the method's closed form (along the rectified axis), or with `samples`, the spread over that many
+// noisy copies of T.
+SigmaPart observation_sigma(const cv::Mat& closed_form, int samples, const DepthMethod& method, const MethodScan& scan,
+                            const calib::StereoRig& rig, const cv::Mat& z_rect_mm, const cv::Mat& depth_mm) {
+  if (!closed_form.empty()) {
+    return {camera_z_sigma(closed_form, z_rect_mm, depth_mm), "the frames' noise through the correspondences"};
+  }
+  const cv::Mat sampled = samples > 0 ? sampled_observation_sigma(method, scan, rig, samples) : cv::Mat();
+  if (sampled.empty()) return {{}, "not propagated by this method or capture"};
+  return {sampled, "the spread over " + std::to_string(samples) + " noisy copies of T"};
 }
 }  // namespace
 
@@ -117,14 +143,11 @@ DepthRun reconstruct_depth(const transport::CompressedTransport& transport, cons
   run.maps = camera_frame_maps(z_rect_grid, triangulation.rect_cam, rectified, rectification.rect_from_cam);
   fill_confidence(run.maps, z_rect_grid, triangulation, rectified, options);
   clock.lap("camera grid");
-  cv::Mat observation_sigma = method.observation_sigma(scan, z_rect_grid);
-  std::string observation_source = "the frames' noise through the correspondences";
-  if (observation_sigma.empty() && options.sigma_samples > 0) {
-    observation_sigma = sampled_observation_sigma(method, scan, rig, options.sigma_samples);
-    observation_source = "the spread over " + std::to_string(options.sigma_samples) + " noisy copies of T";
-  }
-  if (observation_sigma.empty()) observation_source = "not propagated by this method or capture";
-  add_depth_sigma(run.maps, z_rect_grid, observation_sigma, observation_source, rig, summary);
+  // A method without a closed form for the frames' part is rerun for both parts when samples are asked for.
+  const cv::Mat closed_form = method.observation_sigma(scan, z_rect_grid);
+  const int samples = closed_form.empty() ? options.sigma_samples : 0;
+  add_depth_sigma(run.maps, calibration_sigma(method, scan, rig, run.maps.depth_mm, samples > 0),
+                  observation_sigma(closed_form, samples, method, scan, rig, z_rect_grid, run.maps.depth_mm), summary);
   clock.lap("uncertainty");
   summary["timings"] = clock.timings();
   summary["programs"] = programs.builds();
