@@ -24,14 +24,13 @@
 #include <vector>
 
 #include <benchmark/benchmark.h>
-#include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
-#include <opencv2/structured_light.hpp>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include "bench/bench_common.h"
+#include "bench/opencv_graycode.h"
 #include "calib/rig.h"
 #include "host/capture/frame_source.h"
 #include "host/capture/manifest.h"
@@ -275,58 +274,21 @@ void BM_GrayTriangulation(benchmark::State& state) {
   state.counters["decode_speedup_vs_opencv"] = shared().opencv_decode_seconds / run.seconds["decode"];
 }
 
-// The same Gray frames as 8-bit images (what OpenCV's decoder reads), white and black first.
-const std::vector<cv::Mat>& gray_frames_8bit() {
-  static const std::vector<cv::Mat> frames = [] {
-    const auto m = manifest(true);
-    std::vector<cv::Mat> result(m.frames.size());
-    for (std::size_t i = 0; i < m.frames.size(); ++i) {
-      capture::load_frame(capture_dir(), m, i).convertTo(result[i], CV_8U, 255.0);
-    }
-    return result;
-  }();
-  return frames;
-}
-
-// OpenCV's pipeline on those frames: GrayCodePattern::getProjPixel per lit pixel (integer projector pixels), then
-// cv::undistortPoints and cv::triangulatePoints through the true rig.
+// OpenCV's pipeline on the same Gray frames (loaded once, 8-bit): GrayCodePattern::getProjPixel per lit pixel
+// (integer projector pixels), then cv::undistortPoints and cv::triangulatePoints through the true rig
+// (bench/opencv_graycode.h).
 void BM_GrayTriangulationOpenCV(benchmark::State& state) {
-  const auto& frames = gray_frames_8bit();
+  static const bench::OpencvGrayFrames frames = bench::opencv_gray_frames(capture_dir());
   const calib::StereoRig rig = calib::read_rig(scan_dir() / "truth" / "rig.yaml");
-  cv::structured_light::GrayCodePattern::Params params;
-  params.width = kProjector.width;
-  params.height = kProjector.height;
-  auto graycode = cv::structured_light::GrayCodePattern::create(params);
-  graycode->setBlackThreshold(10);  // rfrecon's thresholds in 8-bit numbers
-  graycode->setWhiteThreshold(5);
-  // rfrecon's manifest order is white, black, then the pairs in OpenCV's order.
-  const std::vector<cv::Mat> patterns(frames.begin() + 2, frames.end());
-  const cv::Mat P_cam = cv::Mat::eye(3, 4, CV_64F);
-  cv::Mat P_proj(3, 4, CV_64F);
-  cv::hconcat(rig.proj_from_cam_rotation, rig.proj_from_cam_translation_mm, P_proj);
   std::size_t points = 0;
   std::vector<double> decode_seconds, pipeline_seconds;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
-    const cv::Mat lit = (frames[0] - frames[1]) > 10;
-    std::vector<cv::Point2f> camera_px, projector_px;
-    for (int v = 0; v < kCamera.height; ++v) {
-      for (int u = 0; u < kCamera.width; ++u) {
-        cv::Point projector(-1, -1);
-        if (lit.at<unsigned char>(v, u) != 0 && !graycode->getProjPixel(patterns, u, v, projector)) {
-          camera_px.emplace_back(static_cast<float>(u), static_cast<float>(v));
-          projector_px.emplace_back(static_cast<float>(projector.x), static_cast<float>(projector.y));
-        }
-      }
-    }
+    const bench::OpencvCorrespondences decoded = bench::opencv_gray_decode(frames, 10, 5);  // rfrecon's thresholds
     decode_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    std::vector<cv::Point2f> camera_rays, projector_rays;
-    cv::undistortPoints(camera_px, camera_rays, rig.camera_matrix, rig.dist_coeffs);
-    cv::undistortPoints(projector_px, projector_rays, rig.projector_matrix, rig.projector_dist_coeffs);
-    cv::Mat homogeneous;
-    cv::triangulatePoints(P_cam, P_proj, camera_rays, projector_rays, homogeneous);
-    points = camera_px.size();
-    benchmark::DoNotOptimize(homogeneous.data);
+    const std::vector<cv::Point3f> triangulated = bench::opencv_triangulate(rig, decoded);
+    points = triangulated.size();
+    benchmark::DoNotOptimize(triangulated.data());
     pipeline_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   state.counters["points"] = static_cast<double>(points);

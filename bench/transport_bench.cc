@@ -6,9 +6,9 @@
 #include <numeric>
 
 #include <benchmark/benchmark.h>
-#include <opencv2/structured_light.hpp>
 
 #include "bench/bench_common.h"
+#include "bench/opencv_graycode.h"
 #include "host/capture/protocol.h"
 #include "host/cl/device_selection.h"
 #include "host/transport/graycode_accumulator.h"
@@ -130,29 +130,14 @@ void BM_DecodeOpenCL(benchmark::State& state) {
   set_counters(state, static_cast<double>(f.linear.size()), f.linear.size() * frame_bytes());
 }
 
-// OpenCV's single-camera decoding: shadow mask from white/black (black threshold), then getProjPixel per pixel.
+// OpenCV's single-camera decoding: shadow mask from white/black (black threshold), then getProjPixel per pixel
+// (bench/opencv_graycode.h).
 void BM_DecodeOpenCV(benchmark::State& state) {
   const auto& f = frames();
-  cv::structured_light::GrayCodePattern::Params params;
-  params.width = kProjector.width;
-  params.height = kProjector.height;
-  auto graycode = cv::structured_light::GrayCodePattern::create(params);
-  graycode->setBlackThreshold(10);  // rfrecon's defaults in 8-bit numbers
-  graycode->setWhiteThreshold(5);
-  const std::vector<cv::Mat> patterns(f.raw.begin() + 2, f.raw.end());
-  cv::Mat x_map(kCamera, CV_32S), y_map(kCamera, CV_32S);
+  const bench::OpencvGrayFrames gray{kProjector, f.raw[0], f.raw[1], {f.raw.begin() + 2, f.raw.end()}};
   for (auto _ : state) {
-    const cv::Mat lit = (f.raw[0] - f.raw[1]) > 10;
-    for (int v = 0; v < kCamera.height; ++v) {
-      for (int u = 0; u < kCamera.width; ++u) {
-        cv::Point projector(-1, -1);
-        if (lit.at<unsigned char>(v, u) != 0 && !graycode->getProjPixel(patterns, u, v, projector)) {
-          x_map.at<int>(v, u) = projector.x;
-          y_map.at<int>(v, u) = projector.y;
-        }
-      }
-    }
-    benchmark::DoNotOptimize(x_map.data);
+    const bench::OpencvCorrespondences decoded = bench::opencv_gray_decode(gray, 10, 5);  // rfrecon's defaults, 8-bit
+    benchmark::DoNotOptimize(decoded.projector_px.data());
   }
   set_counters(state, static_cast<double>(f.raw.size()), f.raw.size() * frame_bytes());
 }
