@@ -5,7 +5,8 @@
 //
 // OUT_DIR gets depth.tiff and points.tiff (each decoded camera pixel's triangulated point, its z as depth), normals
 // NaN and confidence 1 where there is a point, points.ply and summary.json, as `rfrecon reconstruct` writes them.
-// Exit codes: 0 done, 2 usage, 3 bad input (the message names the file), 6 nothing decoded, 1 a bug.
+// Exit codes: 0 done, 2 usage (an OUT_DIR that holds an input, or exists without --force), 3 bad input (the message
+// names the file), 6 nothing decoded, 1 a bug.
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -16,6 +17,7 @@
 
 #include "bench/opencv_graycode.h"
 #include "host/core/errors.h"
+#include "host/core/output_path.h"
 #include "host/outputs/reconstruction_files.h"
 
 namespace {
@@ -23,6 +25,7 @@ namespace {
 using namespace rfrecon;
 
 int run(const std::string& capture_dir, const std::string& rig_file, const std::string& out_dir, bool force) {
+  check_output_directory({out_dir, "OUT_DIR", force}, {capture_dir, rig_file});  // before any work
   const calib::StereoRig rig = calib::read_rig(rig_file);
   const bench::OpencvGrayFrames frames = bench::opencv_gray_frames(capture_dir);
   const bench::OpencvCorrespondences decoded = bench::opencv_gray_decode(frames, 10, 5);

@@ -6,7 +6,6 @@
 
 #include "host/core/parallel_rows.h"
 #include "host/core/percentile.h"
-#include "host/depth/calibration_sigma.h"
 
 namespace rfrecon::depth {
 
@@ -26,17 +25,6 @@ cv::Mat where_depth(const SigmaPart& part, const cv::Mat& depth_mm) {
   return sigma;
 }
 }  // namespace
-
-SigmaPart first_order_calibration_sigma(const calib::StereoRig& rig, const cv::Mat& depth_mm) {
-  const cv::Mat covariance = rig_parameter_covariance(rig);
-  if (covariance.empty()) {
-    return {cv::Mat(depth_mm.size(), CV_32F, cv::Scalar(0.0f)), "none: the rig has no uncertainty (0)"};
-  }
-  return {calibration_depth_sigma(rig, covariance, depth_mm),
-          rig.uncertainty.parameter_covariance.empty()
-              ? "the rig's standard deviations (no covariance in the file), through the triangulation"
-              : "the rig's parameter covariance, through the triangulation"};
-}
 
 cv::Mat camera_z_sigma(const cv::Mat& rect_sigma_mm, const cv::Mat& z_rect_mm, const cv::Mat& depth_mm) {
   if (rect_sigma_mm.empty()) return {};

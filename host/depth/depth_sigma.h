@@ -19,10 +19,6 @@ struct SigmaPart {
   std::string source;
 };
 
-// The calibration's part to first order (calibration_depth_sigma) from the rig's covariance, at each pixel of
-// depth_mm (the camera frame's z); 0 for a rig without uncertainty (a ground truth).
-SigmaPart first_order_calibration_sigma(const calib::StereoRig& rig, const cv::Mat& depth_mm);
-
 // A sigma along the rectified axis at the pixel's depth z_rect_mm, scaled to the camera frame's z depth_mm.
 cv::Mat camera_z_sigma(const cv::Mat& rect_sigma_mm, const cv::Mat& z_rect_mm, const cv::Mat& depth_mm);
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <spdlog/spdlog.h>
 
@@ -57,17 +58,23 @@ const DepthMethod& check_request(const transport::CompressedTransport& transport
   return method;
 }
 
-// The calibration's part: to first order through the triangulation, or with `rerun`, by rerunning the method on the
-// rig moved along each principal direction of its covariance.
+// The calibration's part from the rig's covariance (0 for a rig without one, a ground truth): to first order through
+// the triangulation, or with `rerun`, by rerunning the method on the rig moved along each principal direction.
 SigmaPart calibration_sigma(const DepthMethod& method, const MethodScan& scan, const calib::StereoRig& rig,
                             const cv::Mat& depth_mm, bool rerun) {
-  SigmaPart part = first_order_calibration_sigma(rig, depth_mm);
   const cv::Mat covariance = rig_parameter_covariance(rig);
-  if (!rerun || covariance.empty()) return part;
-  const auto directions = principal_steps(covariance).size();
-  return {rerun_calibration_sigma(method, scan, rig, covariance, depth_mm, part.sigma_mm),
-          part.source.substr(0, part.source.find(", through")) + ", through the method rerun on the rig moved along " +
-              std::to_string(directions) + " principal directions"};
+  if (covariance.empty()) {
+    return {cv::Mat(depth_mm.size(), CV_32F, cv::Scalar(0.0f)), "none: the rig has no uncertainty (0)"};
+  }
+  const std::string source = rig.uncertainty.parameter_covariance.empty()
+                                 ? "the rig's standard deviations (no covariance in the file)"
+                                 : "the rig's parameter covariance";
+  const cv::Mat first_order = calibration_depth_sigma(rig, covariance, depth_mm);
+  if (!rerun) return {first_order, source + ", through the triangulation"};
+  const std::vector<std::vector<double>> steps = principal_steps(covariance);
+  return {rerun_calibration_sigma(method, scan, rig, steps, depth_mm, first_order),
+          source + ", through the method rerun on the rig moved along " + std::to_string(steps.size()) +
+              " principal directions"};
 }
 
 // The frames' part: the method's closed form (along the rectified axis), or with `samples`, the spread over that many

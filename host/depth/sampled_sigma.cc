@@ -11,7 +11,6 @@
 
 #include "host/core/parallel_rows.h"
 #include "host/core/stage_clock.h"
-#include "host/depth/calibration_sigma.h"
 #include "host/depth/camera_grid.h"
 #include "host/transport/dot_rows.h"
 
@@ -88,11 +87,12 @@ cv::Mat sampled_observation_sigma(const DepthMethod& method, const MethodScan& s
 }
 
 cv::Mat rerun_calibration_sigma(const DepthMethod& method, const MethodScan& scan, const calib::StereoRig& rig,
-                                const cv::Mat& covariance, const cv::Mat& depth_mm, const cv::Mat& first_order) {
+                                const std::vector<std::vector<double>>& steps, const cv::Mat& depth_mm,
+                                const cv::Mat& first_order) {
   const int dist_size = static_cast<int>(rig.dist_coeffs.total());
   const std::vector<double> nominal = calib::rig_parameters(rig, dist_size);
   cv::Mat variance = cv::Mat::zeros(depth_mm.size(), CV_64F), lost = cv::Mat::zeros(depth_mm.size(), CV_8U);
-  for (const std::vector<double>& step : principal_steps(covariance)) {
+  for (const std::vector<double>& step : steps) {
     std::vector<double> moved = nominal;
     for (std::size_t i = 0; i < moved.size(); ++i) moved[i] += step[i];
     calib::StereoRig moved_rig = rig;

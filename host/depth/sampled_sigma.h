@@ -3,6 +3,8 @@
 // each principal direction of its covariance (the calibration's part).
 #pragma once
 
+#include <vector>
+
 #include <opencv2/core.hpp>
 
 #include "calib/rig.h"
@@ -20,11 +22,12 @@ cv::Mat sampled_observation_sigma(const DepthMethod& method, const MethodScan& s
                                   int samples);
 
 // One standard deviation (mm, the camera frame's z) of each pixel's depth `depth_mm` that the calibration causes:
-// `rig` moved along each principal direction of `covariance` (principal_steps) by one standard deviation, rectified
-// again, the correspondences triangulated and `method` solved again; the squares of the depth's changes summed
-// (forward differences, as calibration_depth_sigma). Where a moved rig loses a pixel, `first_order` is kept there
-// (calibration_depth_sigma's figure); NaN where depth_mm is NaN.
+// `rig` moved by each of `steps` (principal_steps of its covariance: one standard deviation along each principal
+// direction), rectified again, the correspondences triangulated and `method` solved again; the squares of the depth's
+// changes summed (forward differences, as calibration_depth_sigma). Where a moved rig loses a pixel, `first_order` is
+// kept there (calibration_depth_sigma's figure); NaN where depth_mm is NaN.
 cv::Mat rerun_calibration_sigma(const DepthMethod& method, const MethodScan& scan, const calib::StereoRig& rig,
-                                const cv::Mat& covariance, const cv::Mat& depth_mm, const cv::Mat& first_order);
+                                const std::vector<std::vector<double>>& steps, const cv::Mat& depth_mm,
+                                const cv::Mat& first_order);
 
 }  // namespace rfrecon::depth
