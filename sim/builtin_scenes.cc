@@ -290,6 +290,7 @@ Scene resolve_scene(const std::string& name_or_file, const SceneChanges& changes
     scene.capture.dot_spacing = *changes.dot_spacing;
   }
   if (changes.seed) scene.render.seed = *changes.seed;
+  if (!changes.format.empty()) scene.capture.format = changes.format;
   return scene;
 }
 

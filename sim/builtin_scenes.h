@@ -38,6 +38,7 @@ struct SceneChanges {
   std::map<std::string, int> parameters{};  // the family's parameters (replacing the scene's when family is given)
   std::optional<int> dot_spacing;           // 0 (no dot grid) or at least 2: InputError for 1
   std::optional<unsigned long long> seed;   // the frames' noise seed
+  std::string format;                       // the frame files' format, "tiff" or "png" (capture.format)
 };
 
 // resolve_scene(name_or_file, changes.rig) with the other changes made.

@@ -7,10 +7,8 @@
 #include <random>
 #include <thread>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "host/capture/pattern_files.h"
-#include "host/core/errors.h"
+#include "host/core/image_file.h"
 
 namespace rfrecon::sim {
 
@@ -83,8 +81,7 @@ void write_capture(const TransportMatrix& T, const CaptureSettings& settings, cv
         const cv::Mat pattern = capture::render_pattern(frame.pattern, capture::protocol_options(manifest));
         const cv::Mat raw = camera_reading(transport_image(T, pattern, camera_size), settings, seed, i);
         const fs::path path = capture_dir / frame.file;
-        if (!cv::imwrite(path.string(), raw))
-          throw OutputError("cannot write " + path.string() + " (permission, read-only file system or disk full)");
+        write_image(path, raw);
         if (progress != nullptr) progress->advance();
       } catch (...) {
         const std::lock_guard<std::mutex> lock(failure_mutex);

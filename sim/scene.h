@@ -36,7 +36,7 @@ struct CaptureSettings {
   double ambient = 0.0;                     // linear reading added to every pixel of every frame (full scale = 1)
   double full_well_electrons = 20000.0;     // electrons at full scale (shot noise); 0 = no shot noise
   double read_noise_dn = 0.5;               // Gaussian read noise, digital numbers (of bit_depth); 0 = none
-  std::string format = "png";               // "png" or "tiff"
+  std::string format = "tiff";              // frame files: "tiff" (uncompressed) or "png"
 };
 
 struct Scene {

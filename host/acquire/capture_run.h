@@ -25,7 +25,7 @@ struct CaptureRunOptions {
   int latency_frames = -1;                  // frames discarded after each change; -1: measured first
   std::string camera_response = "linear";   // the manifest's camera_response for the camera's raw frames
   std::optional<double> black_level_dn;     // the camera's reading with no light, when it does not report its own
-  std::string format = "png";               // frame files: "png" or "tiff"
+  std::string format = "tiff";              // frame files: "tiff" (uncompressed) or "png"
   int retries = 2;                          // captures again of a repeated frame or a failed Gray pair
   std::chrono::milliseconds timeout{2000};  // the longest wait for one frame
   // Called before each pattern is shown; what it throws ends the run with nothing written (a library caller's

@@ -123,8 +123,10 @@ void add_capture_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--black-level", o->black_level, "Camera reading with no light, DN (default: the camera's own)")
       ->check(finite_non_negative());
-  command->add_option("--format", r.run.format, "Frame files: png or tiff")
-      ->check(CLI::IsMember({"png", "tiff"}))
+  command
+      ->add_option("--format", r.run.format,
+                   "Frame files: tiff (uncompressed, read at memory speed) or png (smaller, 10x slower to read)")
+      ->check(CLI::IsMember({"tiff", "png"}))
       ->capture_default_str();
   command->add_option("--poses", r.poses, "Capture N board poses for calibrate (sim: every view when 0)")
       ->check(CLI::Range(0, 100));

@@ -31,6 +31,7 @@ struct SimulateCommandOptions {
   std::string family;
   std::shared_ptr<std::map<std::string, int>> parameters = std::make_shared<std::map<std::string, int>>();
   std::optional<int> dot_spacing;
+  std::string format;
   int threads = 0;
 };
 
@@ -54,6 +55,7 @@ void run_simulate(const SimulateCommandOptions& o) {
   changes.parameters = *o.parameters;
   changes.dot_spacing = o.dot_spacing;
   changes.seed = o.seed;
+  changes.format = o.format;
   const sim::Scene scene = sim::resolve_scene(o.scene, changes);
   spdlog::info("simulate: scene '{}', camera {}x{}, projector {}x{}, supersample {}x{}, seed {}", scene.name,
                scene.camera.size.width, scene.camera.size.height, scene.projector.size.width,
@@ -88,6 +90,10 @@ void add_simulate_command(CLI::App& app) {
                    "Dot grid spacing s of the capture (s x s frames after the family's patterns); 0 = no dot grid "
                    "(default: the scene's)")
       ->check(zero_or_range(2, capture::kMaxDotSpacing, "no dot grid"));
+  command
+      ->add_option("--format", o->format,
+                   "Frame files: tiff (uncompressed, read at memory speed) or png (default: the scene's, tiff)")
+      ->check(CLI::IsMember({"tiff", "png"}));
   command->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(0, 1024));
   command->callback([o] { run_simulate(*o); });
 }

@@ -26,8 +26,9 @@ std::string lowercase_extension(const std::filesystem::path& file) {
 }
 
 void write_image(const std::filesystem::path& file, const cv::Mat& image) {
-  const std::vector<int> uncompressed{cv::IMWRITE_TIFF_COMPRESSION, 1};
-  if (!cv::imwrite(file.string(), image, image.depth() == CV_32F ? uncompressed : std::vector<int>{})) {
+  // TIFFs uncompressed: OpenCV's default LZW corrupts multi-channel float TIFFs (4.6), and camera frames decode at
+  // memory speed without it (docs/performance.md).
+  if (!cv::imwrite(file.string(), image, {cv::IMWRITE_TIFF_COMPRESSION, 1})) {
     throw OutputError("cannot write " + file.string() + " (permission, read-only file system or disk full)");
   }
 }

@@ -1,4 +1,4 @@
-// Image files through OpenCV with rfrecon's rules: float TIFFs uncompressed, type-checked reads that name the file.
+// Image files through OpenCV with rfrecon's rules: TIFFs uncompressed, type-checked reads that name the file.
 #pragma once
 
 #include <filesystem>
@@ -14,9 +14,9 @@ std::string size_text(cv::Size size);
 // The extension of `file` in lower case, with its dot (".tiff"); "" when it has none.
 std::string lowercase_extension(const std::filesystem::path& file);
 
-// cv::imwrite by extension; float images go to TIFF uncompressed (OpenCV 4.6 corrupts multi-channel float TIFFs
-// with its default LZW). Not atomic by itself: write into a StagingDirectory or AtomicFile temporary. Throws
-// OutputError naming the file when it cannot be written.
+// cv::imwrite by extension; TIFFs are written uncompressed (OpenCV 4.6 corrupts multi-channel float TIFFs with its
+// default LZW, and camera frames decode at memory speed uncompressed). Not atomic by itself: write into a
+// StagingDirectory or AtomicFile temporary. Throws OutputError naming the file when it cannot be written.
 void write_image(const std::filesystem::path& file, const cv::Mat& image);
 
 // cv::imread(file, flags) with the checks every image read needs, before anything is decoded: a regular file (a

@@ -135,7 +135,7 @@ void bind_capture(py::module_& module) {
       py::arg("projector"), py::arg("camera"), py::arg("out_dir"), py::arg("dot_spacing") = 8,
       py::arg("projector_size") = py::none(), py::arg("exposures_us") = std::vector<double>{},
       py::arg("latency_frames") = -1, py::arg("camera_response") = "linear", py::arg("black_level_dn") = py::none(),
-      py::arg("format") = "png", py::arg("retries") = 2, py::arg("timeout_ms") = 2000, py::arg("force") = false,
+      py::arg("format") = "tiff", py::arg("retries") = 2, py::arg("timeout_ms") = 2000, py::arg("force") = false,
       "`rfrecon capture`: shows the protocol on projector, grabs camera in step (latency measured unless given; "
       "several "
       "exposures merged) and writes the capture directory out_dir whole or not at all. Returns {manifest, "

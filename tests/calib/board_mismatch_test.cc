@@ -33,7 +33,7 @@ class BoardMismatchTest : public ::testing::Test {
   static std::string white_frames(int count) {
     std::string images;
     for (int i = 0; i < count; ++i)
-      images += (kPoses / ("pose_0" + std::to_string(i)) / "000_white.png").string() + " ";
+      images += (kPoses / ("pose_0" + std::to_string(i)) / "000_white.tiff").string() + " ";
     return images;
   }
   static std::string bouguet_left_images() {

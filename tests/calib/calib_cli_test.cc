@@ -63,7 +63,7 @@ TEST_F(CalibrateCliTest, MixedImageSizesIsExit3) {
   fs::create_directories(out_);
   const fs::path small = out_ / "small.png";
   cv::imwrite(small.string(), cv::Mat(100, 120, CV_8U, cv::Scalar(90)));
-  const auto result = run_cli("calibrate-camera " + pose(0) + "/000_white.png " + small.string() +
+  const auto result = run_cli("calibrate-camera " + pose(0) + "/000_white.tiff " + small.string() +
                               " --board 14x9 --square 20 -o " + (out_ / "camera.yaml").string());
   EXPECT_EQ(result.exit_code, kExitInput) << result.output;
   EXPECT_THAT(result.output, HasSubstr(small.string()));
@@ -82,7 +82,7 @@ TEST_F(CalibrateCliTest, UnreadableImageIsExit3) {
 }
 
 TEST_F(CalibrateCliTest, SquareBoardIsRejected) {
-  const auto result = run_cli("calibrate-camera " + pose(0) + "/000_white.png --board 6x6 --square 20 -o " +
+  const auto result = run_cli("calibrate-camera " + pose(0) + "/000_white.tiff --board 6x6 --square 20 -o " +
                               (out_ / "camera.yaml").string());
   EXPECT_EQ(result.exit_code, kExitUsage) << result.output;
   EXPECT_THAT(result.output, HasSubstr("inner corner counts differ"));
@@ -90,7 +90,7 @@ TEST_F(CalibrateCliTest, SquareBoardIsRejected) {
 
 TEST_F(CalibrateCliTest, UnknownDistortionModelIsExit2) {
   const auto result =
-      run_cli("calibrate-camera " + pose(0) + "/000_white.png --board 14x9 --square 20 --distortion k4 -o " +
+      run_cli("calibrate-camera " + pose(0) + "/000_white.tiff --board 14x9 --square 20 --distortion k4 -o " +
               (out_ / "camera.yaml").string());
   EXPECT_EQ(result.exit_code, kExitUsage) << result.output;
   EXPECT_THAT(result.output, HasSubstr("k4"));
@@ -101,7 +101,7 @@ TEST_F(CalibrateCliTest, UnknownDistortionModelIsExit2) {
 // positive deviation, and the report warns that six poses are too few.
 TEST_F(CalibrateCliTest, RadialModelWithFewPosesWarnsAndHoldsTangentialAtZero) {
   std::string images;
-  for (int i = 0; i < 6; ++i) images += pose(i) + "/000_white.png ";
+  for (int i = 0; i < 6; ++i) images += pose(i) + "/000_white.tiff ";
   const auto result = run_cli("calibrate-camera " + images + "--board 14x9 --square 20 --distortion radial -o " +
                               (out_ / "camera.yaml").string());
   ASSERT_EQ(result.exit_code, 0) << result.output;

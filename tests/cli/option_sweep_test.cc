@@ -189,7 +189,7 @@ TEST_F(OptionSweepTest, InputsThatAreNotRegularFilesAreRefusedByName) {
   }
   // A capture whose manifest, and one whose white frame, is a FIFO.
   for (const fs::path& bad_capture :
-       {copy_with_fifo(capture(), "manifest.json"), copy_with_fifo(capture(), "000_white.png")}) {
+       {copy_with_fifo(capture(), "manifest.json"), copy_with_fifo(capture(), "000_white.tiff")}) {
     for (const std::string command : {"transport", "check"}) {
       const std::string arguments =
           command + " " + quoted(bad_capture) + (command == "transport" ? " -o " + output("bad.h5") : "");

@@ -71,6 +71,20 @@ class ImageFileTest : public ::testing::Test {
   const fs::path dir_ = temp_.path();
 };
 
+TEST_F(ImageFileTest, TiffsAreWrittenUncompressed) {
+  // A constant image, which any compression would shrink, keeps every sample's bytes: tag 259 (Compression) is 1.
+  for (const int type : {CV_8UC1, CV_16UC1, CV_32FC1}) {
+    const cv::Mat image(48, 64, type, cv::Scalar(7));
+    const fs::path file = dir_ / ("constant_" + std::to_string(type) + ".tiff");
+    write_image(file, image);
+    EXPECT_GE(fs::file_size(file), image.total() * image.elemSize()) << file;
+    std::ifstream in(file, std::ios::binary);
+    in.seekg(tiff_short_value(file, 259));
+    EXPECT_EQ(in.get(), 1) << file;
+    EXPECT_EQ(cv::norm(read_image(file, type), image, cv::NORM_INF), 0.0) << file;
+  }
+}
+
 TEST_F(ImageFileTest, EveryFormatsHeaderIsReadWithoutDecoding) {
   const cv::Mat deep(48, 64, CV_16U, cv::Scalar(1000));
   const cv::Mat color(48, 64, CV_8UC3, cv::Scalar(10, 20, 30));

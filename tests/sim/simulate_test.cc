@@ -3,7 +3,9 @@
 #include "sim/simulate.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
@@ -76,6 +78,32 @@ TEST_F(SimulateTest, SameSeedGivesIdenticalBytes) {
   simulate(again, dir_ / "d", {2, false, {}});
   EXPECT_EQ(bytes(dir_ / "a" / "capture" / manifest.frames[5].file),
             bytes(dir_ / "d" / "capture" / manifest.frames[5].file));
+}
+
+TEST_F(SimulateTest, FramesAreUncompressedTiffsUnlessPngIsAsked) {
+  // The default frame files are TIFFs holding every 16-bit sample uncompressed (read at memory speed); PNG, asked
+  // for, holds the same samples losslessly in fewer bytes.
+  Scene scene = small_plane_scene();
+  simulate(scene, dir_ / "tiff", {2, false, {}});
+  scene.capture.format = "png";
+  simulate(scene, dir_ / "png", {2, false, {}});
+  const auto tiffs = capture::read_manifest(dir_ / "tiff" / "capture");
+  const auto pngs = capture::read_manifest(dir_ / "png" / "capture");
+  ASSERT_EQ(tiffs.frames.size(), pngs.frames.size());
+  const auto sample_bytes = static_cast<std::uintmax_t>(tiffs.camera_size.area()) * sizeof(std::uint16_t);
+  for (std::size_t i = 0; i < tiffs.frames.size(); ++i) {
+    const fs::path tiff = dir_ / "tiff" / "capture" / tiffs.frames[i].file;
+    const fs::path png = dir_ / "png" / "capture" / pngs.frames[i].file;
+    ASSERT_EQ(tiff.extension(), ".tiff");
+    ASSERT_EQ(png.extension(), ".png");
+    EXPECT_GE(fs::file_size(tiff), sample_bytes) << tiff << " is compressed";
+    EXPECT_LT(fs::file_size(png), sample_bytes) << png;
+    const cv::Mat a = cv::imread(tiff.string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat b = cv::imread(png.string(), cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(a.type(), CV_16UC1);
+    ASSERT_EQ(b.type(), CV_16UC1);
+    EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0) << tiffs.frames[i].file;
+  }
 }
 
 TEST_F(SimulateTest, SharedCameraRaysRenderTheSameTransport) {
