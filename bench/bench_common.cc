@@ -71,8 +71,7 @@ void set_bandwidth_counters(benchmark::State& state, double bytes_per_iteration)
       benchmark::Counter(bytes / host_stream_bytes_per_second(), benchmark::Counter::kIsRate);
 }
 
-namespace {
-const bool kContextAdded = [] {
+void add_run_context() {
   benchmark::AddCustomContext("rfrecon_version", RFRECON_VERSION);
   std::string devices;
   for (const auto& entry : rfrecon::cl::enumerate_devices()) {
@@ -81,9 +80,7 @@ const bool kContextAdded = [] {
   benchmark::AddCustomContext("opencl_devices", devices);
   benchmark::AddCustomContext("host_stream_GBps", std::to_string(host_stream_bytes_per_second() / 1e9));
   benchmark::AddCustomContext("host_read_GBps", std::to_string(host_read_bytes_per_second() / 1e9));
-  return true;
-}();
-}  // namespace
+}
 
 void RecordingReporter::ReportRuns(const std::vector<Run>& runs) {
   for (const auto& run : runs) {

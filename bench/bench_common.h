@@ -20,6 +20,11 @@ double host_stream_bytes_per_second();
 // dot frames; on a machine whose reads alone move less than the streaming pass, it is the lower of the two.
 double host_read_bytes_per_second();
 
+// Adds the run's context to the JSON and the console: rfrecon's version, the OpenCL devices and both rooflines
+// (measured here, 512 MiB in memory for a moment). Call from main before RunSpecifiedBenchmarks, in the process that
+// runs the benchmarks only (a child whose peak memory is measured must not call it).
+void add_run_context();
+
 // Sets "GB/s" and "roofline_fraction" (achieved bandwidth / host_stream_bytes_per_second()) for `bytes_per_iteration`
 // bytes moved each iteration. Call after the timing loop.
 void set_bandwidth_counters(benchmark::State& state, double bytes_per_iteration);

@@ -121,6 +121,7 @@ BENCHMARK_CAPTURE(BM_Fuse, single, Solver::kSingleWorkItem)->Apply(configure);
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  rfrecon::bench::add_run_context();
   rfrecon::bench::RecordingReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
   // Speed-ups of the OpenCL entries over the reference, for the stages whose runs were all selected.

@@ -3,15 +3,19 @@
 // the minimal bytes and the memory roofline, peak resident memory, and the peer: the Gray-code-only triangulation
 // against OpenCV's (GrayCodePattern decode plus cv::triangulatePoints) on the same frames. docs/performance.md.
 //
-//   build/bench/pipeline_bench [--scan=DIR] [--benchmark_out=FILE --benchmark_out_format=json]
+//   build/bench/pipeline_bench [--scan=DIR] [--camera=WxH] [--benchmark_out=FILE --benchmark_out_format=json]
 //
+// --camera renders the scan at another camera size (default 1280x1024; the projector stays 1024x768): how time and
+// memory grow with the camera's pixels. A DIR that holds a scan is reused at its own size.
 // The scan (cube-anisotropic rendered by sim::simulate, about 40 s) is written to DIR when DIR has none, and reused;
 // without --scan it goes to a temporary directory, removed at exit. BM_FusedScan takes the frames from memory, as a
 // camera SDK hands them over (capture::FrameSource::from_callback over the decoded 16-bit frames), so that
 // pipeline_seconds counts their linearisation but no file, and each scan's transport reuses the memory of the one
 // before, in a process that keeps the memory it frees (keep_freed_memory), as a scanner's loop does;
-// BM_FusedScanFromFiles reads the PNG files on the default reader threads and allocates its transport anew, as
-// `rfrecon transport` does (in the same process). Counters are medians over the iterations.
+// BM_FusedScanFromFiles reads the capture's files (simulate's default format, uncompressed TIFF) on the default reader
+// threads and allocates its transport anew, as `rfrecon transport` does (in the same process), and
+// BM_FusedScanFromPngFiles the same frames from a PNG copy of the capture (DIR/capture-png, made once). Counters are
+// medians over the iterations.
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -47,14 +51,19 @@ namespace {
 using namespace rfrecon;
 namespace fs = std::filesystem;
 
-const cv::Size kCamera(1280, 1024);
 const cv::Size kProjector(1024, 768);
+
+cv::Size& camera_size() {  // the size a scan is rendered at (--camera)
+  static cv::Size size(1280, 1024);
+  return size;
+}
 
 fs::path& scan_dir() {
   static fs::path dir;
   return dir;
 }
 fs::path capture_dir() { return scan_dir() / "capture"; }
+fs::path png_capture_dir() { return scan_dir() / "capture-png"; }
 
 // The modes of this program run as a child process (a fresh copy of it, so that its memory high-water mark and its
 // threads are its own): render the scan, or run one fused scan.
@@ -64,9 +73,11 @@ constexpr const char* kScanMode = "--child-scan";
 // Runs this program in `mode` on scan_dir() and returns the child's peak resident memory in MB.
 double run_child(const char* mode) {
   const std::string scan = "--scan=" + scan_dir().string();
+  const std::string camera =
+      "--camera=" + std::to_string(camera_size().width) + "x" + std::to_string(camera_size().height);
   const pid_t child = fork();
   if (child == 0) {
-    execl("/proc/self/exe", "pipeline_bench", scan.c_str(), mode, static_cast<char*>(nullptr));
+    execl("/proc/self/exe", "pipeline_bench", scan.c_str(), camera.c_str(), mode, static_cast<char*>(nullptr));
     _exit(127);
   }
   int status = 0;
@@ -80,7 +91,7 @@ double run_child(const char* mode) {
 
 void render_scan() {
   sim::Scene scene = sim::builtin_scene("cube-anisotropic");
-  sim::resize_device(scene.camera, kCamera);
+  sim::resize_device(scene.camera, camera_size());
   sim::resize_device(scene.projector, kProjector);
   sim::simulate(scene, scan_dir(), sim::SimulateOptions{});  // refuses a directory that holds anything else
 }
@@ -91,6 +102,24 @@ void prepare_scan() {
   std::printf("rendering the scan into %s (about 40 s)...\n", scan_dir().c_str());
   std::fflush(stdout);
   run_child(kRenderMode);
+}
+
+// Copies the capture into png_capture_dir() as 16-bit PNGs (OpenCV's default compression) unless it holds one.
+void prepare_png_copy() {
+  if (fs::exists(png_capture_dir() / capture::kManifestFileName)) return;
+  capture::CaptureManifest manifest = capture::read_manifest(capture_dir());
+  const fs::path staging = scan_dir() / "capture-png.partial";
+  fs::remove_all(staging);
+  fs::create_directories(staging);
+  for (auto& frame : manifest.frames) {
+    const cv::Mat raw = cv::imread((capture_dir() / frame.file).string(), cv::IMREAD_UNCHANGED);
+    frame.file = fs::path(frame.file).replace_extension(".png").string();
+    if (raw.empty() || !cv::imwrite((staging / frame.file).string(), raw)) {
+      throw std::runtime_error("pipeline_bench: cannot copy " + frame.file + " into " + staging.string());
+    }
+  }
+  capture::write_manifest(manifest, staging);
+  fs::rename(staging, png_capture_dir());
 }
 
 // Figures one benchmark needs from another or from main (benchmarks run in the order registered below).
@@ -112,9 +141,9 @@ rfrecon::cl::ProgramCache& programs() {
   return cache;
 }
 
-// The capture's manifest; gray_only drops the dot frames (what a Gray-code scanner captures).
-capture::CaptureManifest manifest(bool gray_only) {
-  capture::CaptureManifest m = capture::read_manifest(capture_dir());
+// The manifest of the capture in `dir`; gray_only drops the dot frames (what a Gray-code scanner captures).
+capture::CaptureManifest manifest(bool gray_only, const fs::path& dir = capture_dir()) {
+  capture::CaptureManifest m = capture::read_manifest(dir);
   if (gray_only) {
     std::vector<capture::Frame> kept;
     for (const auto& frame : m.frames) {
@@ -154,13 +183,13 @@ const RigSetup& rig_setup() {
 }
 
 // With `storage`, the transport reuses its memory and leaves its own there for the next scan, as a scanner's loop
-// does (compute_transport_on_devices).
+// does (compute_transport_on_devices). `dir` holds the manifest that names the frames.
 ScanRun run_scan(const capture::FrameSource& frames, bool gray_only, const std::string& method,
-                 transport::CompressedTransport* storage = nullptr) {
+                 transport::CompressedTransport* storage = nullptr, const fs::path& dir = capture_dir()) {
   const RigSetup& rig = rig_setup();
   ScanRun run;
   auto transport = transport::compute_transport_on_devices(
-      frames, manifest(gray_only), {}, devices(), programs(), rfrecon::cl::KernelEntry::kNdRange,
+      frames, manifest(gray_only, dir), {}, devices(), programs(), rfrecon::cl::KernelEntry::kNdRange,
       transport::kDefaultReaders, storage != nullptr ? std::move(*storage) : transport::CompressedTransport{});
   for (const auto& timing : transport.timings) run.seconds[timing.stage] += timing.seconds;
   depth::DepthOptions options;
@@ -209,9 +238,9 @@ ScanRun median_scan(const std::vector<ScanRun>& runs) {
 
 std::size_t frame_count(bool gray_only) { return manifest(gray_only).frames.size(); }
 // The camera's 16-bit samples, as the kernels read them (white and black aside, made linear once on the host).
-double frame_bytes() { return static_cast<double>(kCamera.area()) * sizeof(std::uint16_t); }
+double frame_bytes() { return static_cast<double>(manifest(false).camera_size.area()) * sizeof(std::uint16_t); }
 
-// The frames of manifest(gray_only) as the camera gave them (16-bit PNG samples), decoded once, handed over by a
+// The frames of manifest(gray_only) as the camera gave them (16-bit samples), decoded once, handed over by a
 // callback.
 capture::FrameSource frames_in_memory(bool gray_only) {
   static std::map<bool, std::vector<cv::Mat>> raw;
@@ -252,14 +281,16 @@ void BM_FusedScan(benchmark::State& state) {
   state.counters["rig_geometry_seconds"] = rig_setup().seconds;
 }
 
-// The same scan from the PNG files, read on transport::kDefaultReaders threads while the devices work.
-void BM_FusedScanFromFiles(benchmark::State& state) {
+// The same scan from the capture's files in `dir`, read on transport::kDefaultReaders threads while the devices work.
+void scan_files(benchmark::State& state, const fs::path& dir) {
   std::vector<ScanRun> runs;
-  for (auto _ : state) runs.push_back(run_scan(capture_dir(), false, "fused"));
+  for (auto _ : state) runs.push_back(run_scan(dir, false, "fused", nullptr, dir));
   const ScanRun run = median_scan(runs);
   for (const auto& [stage, seconds] : run.seconds) state.counters[stage + "_seconds"] = seconds;
   state.counters["pipeline_with_reading_seconds"] = run.total_seconds;
 }
+void BM_FusedScanFromFiles(benchmark::State& state) { scan_files(state, capture_dir()); }
+void BM_FusedScanFromPngFiles(benchmark::State& state) { scan_files(state, png_capture_dir()); }
 
 // rfrecon's Gray-code-only triangulation (decode, sub-pixel refinement, triangulation) on the scan's Gray frames, in
 // memory as OpenCV's are.
@@ -303,6 +334,7 @@ BENCHMARK(BM_GrayTriangulationOpenCV)->Unit(benchmark::kMillisecond)->Iterations
 BENCHMARK(BM_GrayTriangulation)->Unit(benchmark::kMillisecond)->Iterations(6)->UseRealTime();
 BENCHMARK(BM_FusedScan)->Unit(benchmark::kMillisecond)->Iterations(6)->UseRealTime();
 BENCHMARK(BM_FusedScanFromFiles)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+BENCHMARK(BM_FusedScanFromPngFiles)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 
 }  // namespace
 
@@ -315,6 +347,13 @@ int main(int argc, char** argv) {
     if (argument.rfind("--scan=", 0) == 0) {
       scan_dir() = argument.substr(7);
       temporary = false;
+    } else if (argument.rfind("--camera=", 0) == 0) {
+      int width = 0, height = 0;
+      if (std::sscanf(argument.c_str() + 9, "%dx%d", &width, &height) != 2 || width < 64 || height < 64) {
+        std::fprintf(stderr, "pipeline_bench: --camera takes WxH, at least 64x64: %s\n", argument.c_str());
+        return 2;
+      }
+      camera_size() = cv::Size(width, height);
     } else if (argument == kRenderMode || argument == kScanMode) {
       mode = argument;
     } else {
@@ -340,6 +379,7 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(count, arguments.data())) return 1;
   try {
     prepare_scan();
+    prepare_png_copy();
     shared().peak_rss_mb = run_child(kScanMode);
   } catch (const std::exception& error) {  // the child has said why
     std::fprintf(stderr, "%s\n", error.what());
@@ -347,14 +387,25 @@ int main(int argc, char** argv) {
   }
   // The benchmarks' process scans again and again, as a scanner does: it keeps the memory it frees (the child that
   // measured the peak resident memory above did not, as `rfrecon` does not).
+  const cv::Size camera = manifest(false).camera_size;
+  const double pixels = static_cast<double>(camera.area());
+  benchmark::AddCustomContext("camera", std::to_string(camera.width) + "x" + std::to_string(camera.height));
+  benchmark::AddCustomContext("peak_rss_bytes_per_pixel", std::to_string(shared().peak_rss_mb * 1048576.0 / pixels));
   benchmark::AddCustomContext("keep_freed_memory", keep_freed_memory() ? "yes" : "no (malloc is not glibc's)");
+  rfrecon::bench::add_run_context();
   rfrecon::bench::RecordingReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
   const auto ratio = [](double a, double b) { return b > 0.0 ? a / b : 0.0; };
   const double opencv = reporter.counter("BM_GrayTriangulationOpenCV", "pipeline_seconds");
-  std::printf("\nfused scan: %.3f s from frames in memory, %.3f s from PNG files, peak resident memory %.0f MB\n",
-              reporter.counter("BM_FusedScan", "pipeline_seconds"),
-              reporter.counter("BM_FusedScanFromFiles", "pipeline_with_reading_seconds"), shared().peak_rss_mb);
+  std::printf(
+      "\nfused scan: %.3f s from frames in memory, %.3f s from TIFF files, %.3f s from PNG files, peak resident "
+      "memory %.0f MB\n",
+      reporter.counter("BM_FusedScan", "pipeline_seconds"),
+      reporter.counter("BM_FusedScanFromFiles", "pipeline_with_reading_seconds"),
+      reporter.counter("BM_FusedScanFromPngFiles", "pipeline_with_reading_seconds"), shared().peak_rss_mb);
+  std::printf("camera %dx%d: %.1f ns and %.0f bytes of peak memory per camera pixel (from frames in memory)\n",
+              camera.width, camera.height, reporter.counter("BM_FusedScan", "pipeline_seconds") / pixels * 1e9,
+              shared().peak_rss_mb * 1048576.0 / pixels);
   std::printf("Gray-code triangulation: rfrecon %.3f s, OpenCV %.3f s: %.1fx; decoding alone %.1fx\n",
               reporter.counter("BM_GrayTriangulation", "pipeline_seconds"), opencv,
               ratio(opencv, reporter.counter("BM_GrayTriangulation", "pipeline_seconds")),

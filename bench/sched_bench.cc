@@ -215,6 +215,7 @@ int main(int argc, char** argv) {
   ms(benchmark::RegisterBenchmark("full/primal_2_devices", BM_PrimalScheduled, 2));
   ms(benchmark::RegisterBenchmark("transport/1_device", BM_Transport, 1));
   ms(benchmark::RegisterBenchmark("transport/2_devices", BM_Transport, 2));
+  rfrecon::bench::add_run_context();
   rfrecon::bench::RecordingReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
   std::printf("\n%zu OpenCL device(s) available\n", all_devices().size());

@@ -177,6 +177,7 @@ BENCHMARK(BM_CompressOpenCL)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRe
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  rfrecon::bench::add_run_context();
   rfrecon::bench::RecordingReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
   const auto ratio = [](double a, double b) { return b > 0.0 ? a / b : 0.0; };
