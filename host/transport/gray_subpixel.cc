@@ -3,9 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <stdexcept>
+#include <vector>
 
 #include <opencv2/core/hal/hal.hpp>
 
@@ -22,34 +25,41 @@ const float* pixels(const cv::Mat& frame, cv::Size camera_size) {
   return frame.ptr<float>();
 }
 
-// Boundary points of one axis code: per camera pixel and direction, the projector coordinate of the boundary
-// between it and its neighbour (c + 0.5 between codes c and c + 1); NaN where the pair is unusable.
-using Boundaries = std::array<std::vector<float>, 2>;  // [0: right, 1: down], projector px
+// The usable boundary points of one axis code, row by row: where a pixel's code and its right (or lower) neighbour's
+// are one apart, the boundary between them (c + 0.5 between codes c and c + 1, projector px) at the crossing of the
+// bit that differs. Only the points that exist are kept, in the order of their pair's first pixel, right before down,
+// so a window reads no empty pair (the empty ones' branches cost more than the fits).
+struct BoundaryRows {
+  std::vector<std::size_t> start;  // row v's points are [start[v], start[v + 1])
+  std::vector<std::int32_t> key;   // 2 u + direction (0: right, 1: down) of the pair's first pixel (u, v)
+  std::vector<float> t;            // fraction of the way to the neighbour where the boundary lies
+  std::vector<float> value;        // projector px
 
-Boundaries usable_boundaries(const std::array<std::vector<float>, 2>& crossing, const std::vector<std::uint32_t>& code,
-                             const std::vector<std::uint8_t>& flags, cv::Size size) {
-  const auto n = static_cast<std::size_t>(size.area());
-  Boundaries b;
-  for (int direction = 0; direction < 2; ++direction) {
-    auto& value = b[direction];
-    value.assign(n, kNaN);
-    const std::size_t step = direction == 0 ? 1 : static_cast<std::size_t>(size.width);
-    for (int y = 0; y < size.height - direction; ++y) {
-      for (int x = 0; x < size.width - (1 - direction); ++x) {
-        const std::size_t c = static_cast<std::size_t>(y) * size.width + x;
-        const std::size_t next = c + step;
-        if (std::isnan(crossing[direction][c]) || (flags[c] & kFlagValid) == 0 || (flags[next] & kFlagValid) == 0) {
-          continue;
+  BoundaryRows(const std::array<std::vector<float>, 2>& crossing, const std::vector<std::uint32_t>& code,
+               const std::vector<std::uint8_t>& flags, cv::Size size) {
+    start.reserve(static_cast<std::size_t>(size.height) + 1);
+    for (int y = 0; y < size.height; ++y) {
+      start.push_back(key.size());
+      for (int x = 0; x < size.width; ++x) {
+        for (int direction = 0; direction < 2; ++direction) {
+          if (direction == 0 ? x + 1 >= size.width : y + 1 >= size.height) continue;
+          const std::size_t c = static_cast<std::size_t>(y) * size.width + x;
+          const std::size_t next = c + (direction == 0 ? 1 : static_cast<std::size_t>(size.width));
+          const float crossed = crossing[direction][c];
+          if (std::isnan(crossed) || (flags[c] & kFlagValid) == 0 || (flags[next] & kFlagValid) == 0) continue;
+          const std::uint32_t lo = std::min(code[c], code[next]);
+          const std::uint32_t hi = std::max(code[c], code[next]);
+          // Codes one apart differ in exactly one Gray bit: the one whose crossing was kept.
+          if (hi - lo != 1) continue;
+          key.push_back(2 * x + direction);
+          t.push_back(crossed);
+          value.push_back(static_cast<float>(hi) - 0.5f);
         }
-        const std::uint32_t lo = std::min(code[c], code[next]);
-        const std::uint32_t hi = std::max(code[c], code[next]);
-        // Codes one apart differ in exactly one Gray bit: the one whose crossing was kept.
-        if (hi - lo == 1) value[c] = static_cast<float>(hi) - 0.5f;
       }
     }
+    start.push_back(key.size());
   }
-  return b;
-}
+};
 
 // The boundary points of one window, field by field (a loop that builds whole structs through the stack stalled on
 // store forwarding).
@@ -125,34 +135,37 @@ struct Moments {
 
 // The boundary points of one axis code around a camera pixel.
 struct Window {
-  Boundaries boundaries;
-  const std::array<std::vector<float>, 2>& crossing;
+  const BoundaryRows& rows;
   cv::Size size;
   const GraySubpixelOptions& options;
 
   // Points within radius_px (in x and y) of pixel (x, y) whose value lies within 1 + max_slope * distance of the
   // pixel's decoded position `own` (the others belong to another surface, across an occlusion edge), their values less
-  // `own`, weighted by distance. The weights come in a loop of their own: a call to exp among the other arithmetic made
-  // the compiler keep every other value in memory around it.
-  void gather(int x, int y, double own, BoundaryPoints& points) const {
+  // `own`, weighted by distance. `cursor[i]` is where window row i's search starts: pixels of one row are gathered
+  // left to right, so each row's first point is found by moving it on. The weights come in a loop of their own: a call
+  // to exp among the other arithmetic made the compiler keep every other value in memory around it.
+  void gather(int x, int y, double own, std::vector<std::size_t>& cursor, BoundaryPoints& points) const {
     const int r = options.radius_px;
     points.clear();
-    const auto consider = [&](float value, double dx, double dy) {
-      if (std::fabs(dx) > r || std::fabs(dy) > r) return;
-      const double offset = value - own;
-      if (std::fabs(offset) > options.max_slope * std::sqrt(dx * dx + dy * dy) + 1.0) return;
-      points.add(dx, dy, offset);
-    };
     // Pairs start at most one pixel left of or above the window, where their crossing may lie inside it.
-    for (int v = std::max(y - r - 1, 0); v <= std::min(y + r, size.height - 1); ++v) {
-      const std::size_t row = static_cast<std::size_t>(v) * static_cast<std::size_t>(size.width);
-      const float* right = boundaries[0].data() + row;
-      const float* down = boundaries[1].data() + row;
-      const float* right_t = crossing[0].data() + row;
-      const float* down_t = crossing[1].data() + row;
-      for (int u = std::max(x - r - 1, 0); u <= std::min(x + r, size.width - 1); ++u) {
-        if (!std::isnan(right[u])) consider(right[u], u - x + static_cast<double>(right_t[u]), v - y);
-        if (!std::isnan(down[u])) consider(down[u], u - x, v - y + static_cast<double>(down_t[u]));
+    const int top = std::max(y - r - 1, 0);
+    const std::int32_t lowest_key = 2 * std::max(x - r - 1, 0);
+    const std::int32_t end_key = 2 * (std::min(x + r, size.width - 1) + 1);
+    for (int v = top; v <= std::min(y + r, size.height - 1); ++v) {
+      std::size_t& i = cursor[static_cast<std::size_t>(v - top)];
+      i = std::max(i, rows.start[static_cast<std::size_t>(v)]);
+      const std::size_t end = rows.start[static_cast<std::size_t>(v) + 1];
+      while (i < end && rows.key[i] < lowest_key) ++i;
+      for (std::size_t k = i; k < end && rows.key[k] < end_key; ++k) {
+        const int u = rows.key[k] >> 1;
+        const bool down = (rows.key[k] & 1) != 0;
+        const double t = rows.t[k];
+        const double dx = down ? u - x : u - x + t;
+        const double dy = down ? v - y + t : v - y;
+        if (std::fabs(dx) > r || std::fabs(dy) > r) continue;
+        const double offset = rows.value[k] - own;
+        if (std::fabs(offset) > options.max_slope * std::sqrt(dx * dx + dy * dy) + 1.0) continue;
+        points.add(dx, dy, offset);
       }
     }
     const double two_sigma2 = 2.0 * options.weight_sigma_px * options.weight_sigma_px;
@@ -208,30 +221,37 @@ void GraySubpixel::refine(CompressedTransport& transport) const {
   const int width = camera_size_.width;
   for (int axis = 0; axis < 2; ++axis) {
     const auto& code = axis == 0 ? transport.pixel_x : transport.pixel_y;
-    const Window window{usable_boundaries(crossing_[axis], code, transport.flags, camera_size_), crossing_[axis],
-                        camera_size_, options_};
+    const BoundaryRows boundaries(crossing_[axis], code, transport.flags, camera_size_);
+    const Window window{boundaries, camera_size_, options_};
     // Rows in parallel: each pixel's fit reads the boundaries and writes only its own correspondence.
     cv::parallel_for_(cv::Range(0, camera_size_.height), [&](const cv::Range& rows) {
       BoundaryPoints points;
+      std::vector<std::size_t> cursor;
       for (int y = rows.start; y < rows.end; ++y) {
+        cursor.assign(2 * static_cast<std::size_t>(options_.radius_px) + 2, 0);
         for (int x = 0; x < width; ++x) {
           const std::size_t c = static_cast<std::size_t>(y) * width + x;
           float& out = transport.correspondence[2 * c + axis];
           if ((transport.flags[c] & kFlagValid) == 0 || std::isnan(out)) continue;
           const double own = out;  // the decision's code, or a position between two adjacent codes
-          window.gather(x, y, own, points);
+          window.gather(x, y, own, cursor, points);
           Moments all;
           for (std::size_t i = 0; i < points.size(); ++i) all.add(points, i);
           const std::optional<Plane> first = all.plane(options_);
           if (!first) continue;
-          // Once more without the points the first plane does not explain.
-          Moments explained;
-          for (std::size_t i = 0; i < points.size(); ++i) {
-            if (std::fabs(first->at(points.dx[i], points.dy[i]) - points.value[i]) <= options_.max_residual_px) {
-              explained.add(points, i);
+          const auto explains = [&](std::size_t i) {
+            return std::fabs(first->at(points.dx[i], points.dy[i]) - points.value[i]) <= options_.max_residual_px;
+          };
+          std::size_t explained_prefix = 0;
+          while (explained_prefix < points.size() && explains(explained_prefix)) ++explained_prefix;
+          std::optional<Plane> plane = first;
+          if (explained_prefix < points.size()) {  // once more without the points the first plane does not explain
+            Moments explained;
+            for (std::size_t i = 0; i < points.size(); ++i) {
+              if (explains(i)) explained.add(points, i);
             }
+            plane = explained.plane(options_);
           }
-          const std::optional<Plane> plane = explained.plane(options_);
           if (plane && std::fabs(plane->a) <= options_.max_code_offset_px) out = static_cast<float>(own + plane->a);
         }
       }
