@@ -66,7 +66,9 @@ void add_transport_command(CLI::App& app) {
   add_devices_option(command, options->devices);
   add_tile_timeout_option(command);
   auto& setup = options->request.setup;
-  command->add_option("-k,--entries", setup.entries_per_pixel, "Entries kept per camera pixel (K)")
+  command
+      ->add_option("-k,--entries", setup.entries_per_pixel,
+                   "Entries kept per camera pixel (K; a capture without dots keeps one)")
       ->check(CLI::Range(1, transport::kMaxEntriesPerPixel))
       ->capture_default_str();
   command

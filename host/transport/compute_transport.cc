@@ -115,6 +115,8 @@ OpenedCapture open_frames(const capture::FrameSource& frames, capture::CaptureMa
   setup.camera_size = manifest.camera_size;
   setup.projector_size = manifest.projector_size;
   setup.dot_spacing = manifest.dot_spacing;
+  // Without dot frames each pixel's row holds its decoded projector pixel alone: one entry, not K.
+  if (setup.dot_spacing == 0) setup.entries_per_pixel = 1;
   setup.family = manifest.family;
   const capture::PatternFamily& patterns = capture::pattern_family(manifest.family);
   for (const auto& parameter : patterns.parameters()) {

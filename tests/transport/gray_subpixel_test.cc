@@ -362,6 +362,7 @@ class GraySubpixelStageTest : public ::testing::Test {
 
 TEST_F(GraySubpixelStageTest, DotGridCapturesKeepTheirCentroidsBitForBit) {
   const CompressedTransport got = staged(scene(), 5);
+  EXPECT_EQ(got.k(), 4) << "a capture with dots keeps the K entries asked for";
   ASSERT_EQ(got.correspondence.size(), in_memory_.correspondence.size());
   EXPECT_EQ(0, std::memcmp(got.correspondence.data(), in_memory_.correspondence.data(),
                            got.correspondence.size() * sizeof(float)));
@@ -371,6 +372,17 @@ TEST_F(GraySubpixelStageTest, GrayCodeOnlyCapturesGetTheRefinedCorrespondences) 
   const CompressedTransport got = staged(scene(), 0);
   EXPECT_EQ(0, std::memcmp(got.correspondence.data(), in_memory_.correspondence.data(),
                            got.correspondence.size() * sizeof(float)));
+  // One entry per pixel, not the K = 4 asked for: the decoded pixel's, the first of the in-memory transport's K.
+  ASSERT_EQ(got.k(), 1);
+  ASSERT_EQ(got.indices.size(), got.camera_pixels());
+  std::size_t entries = 0;
+  for (std::size_t c = 0; c < got.camera_pixels(); ++c) {
+    EXPECT_EQ(got.indices[c], in_memory_.indices[c * in_memory_.k()]) << c;
+    EXPECT_EQ(got.weights[c], in_memory_.weights[c * in_memory_.k()]) << c;
+    for (int k = 1; k < in_memory_.k(); ++k) EXPECT_LT(in_memory_.indices[c * in_memory_.k() + k], 0) << c;
+    entries += got.indices[c] >= 0 ? 1 : 0;
+  }
+  EXPECT_GT(entries, got.camera_pixels() / 2);
   std::size_t fractional = 0;
   for (const float xy : got.correspondence) fractional += !std::isnan(xy) && xy != std::round(xy) ? 1 : 0;
   EXPECT_GT(fractional, got.camera_pixels()) << "most valid pixels must be refined in both axes";
