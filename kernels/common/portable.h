@@ -5,7 +5,7 @@
 
 #ifdef __OPENCL_VERSION__
 #define RF_GLOBAL __global
-// Always inlined: PoCL otherwise compiles the depth ODE's slope as a call (docs/performance.md, "Row solvers").
+// Always inlined: PoCL otherwise compiles the depth ODE's slope as a call (found in a profile of the row solvers).
 #define RF_INLINE inline __attribute__((always_inline))
 #define RF_SQRT sqrt
 #define RF_FABS fabs

@@ -4,7 +4,10 @@
 // (common/frame_batch.h: RF_SAMPLE, made linear with sample_black and sample_scale), the single work-item entry in one
 // of linear floats (`frames`, frame f at f * n, as an FPGA board's DDR holds them). `offsets`: RF_FRAME_BATCH (x, y)
 // dot offsets (unused ones 0). The NDRange entry's `fresh` batch (the first) writes every row, empty where no frame
-// reached it; the single work-item entry's rows come filled from the host.
+// reached it, so that in an earlier transport's memory the host need not fill T's rows (84 MB at 1280x1024 and K = 8)
+// in a pass of its own first; the single work-item entry's rows come filled from the host. Each pixel's rows are read
+// and written once per batch; batches of 32 and 64 frames measured slower on PoCL and hold more frames until their
+// launch (so RF_FRAME_BATCH is 16; docs/performance.md's git history).
 #include "common/target.h"
 
 // Exact agreement with the C++ reference: no fused multiply-add contraction.

@@ -237,8 +237,8 @@ RF_INLINE void rf_dot_frames_lanes(unsigned c0, int fresh, int frame_count, cons
     return;
   }
   const float8 dark = vload8(0, black + c0);
-  // Every frame's samples loaded before the first is used, so that their cache misses overlap (the loads stalled
-  // one by one, docs/performance.md); unused frame buffers repeat frame 0, so every load is in bounds.
+  // Every frame's samples loaded before the first is used, so that their cache misses overlap (a profile on PoCL
+  // showed the loads stalling one by one); unused frame buffers repeat frame 0, so every load is in bounds.
   float8 value[RF_FRAME_BATCH];
 #pragma unroll
   for (int f = 0; f < RF_FRAME_BATCH; ++f) value[f] = rf_linear_sample_lanes(frames[f], c0, map) - dark;
