@@ -12,9 +12,8 @@ boards per SLR too, each kernel in the SLR of its memory bank (the preset's link
 
 A preset must fit, unless its file declares it unsupported (`set(RFRECON_FPGA_SUPPORTED OFF)`), in which case it must
 not fit (so that the declaration, and docs/fpga.md, follow the budget). Otherwise exit 1 with the block kind, the
-count against the budget and each kernel's arrays. Not counted: the NDRange entries' private arrays and every load /
-store unit's cache (the Intel binary holds both), fabric memory (LUTRAM, MLAB), logic and DSP use; only the vendor
-reports show those.
+count against the budget and each kernel's arrays. Not counted: every load / store unit's cache, fabric memory (LUTRAM,
+MLAB), logic and DSP use; only the vendor reports show those.
 
   fpga_budget.py [--root DIR] [--boards DIR] [--board NAME]... [--set NAME=VALUE]... [--cmake PATH] [--clang PATH]
                  [--scratch DIR] [--verbose] [--markdown | --docs FILE | --update-docs FILE]

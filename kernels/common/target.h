@@ -13,6 +13,10 @@
 //                         e.g. `float best[K] RF_PARTITION_COMPLETE;`.
 // On PoCL, GPUs and oclgrind all of them are empty, so the same file runs everywhere.
 //
+//   RF_NDRANGE_ENTRIES    1, or 0 for the FPGA targets: `#if RF_NDRANGE_ENTRIES` around each NDRange entry keeps it
+//                         out of a board binary, which would hold hardware for it that no board runs (boards run the
+//                         single work-item entries: host/cl/entry_choice.h).
+//
 // The HLS C++ tops of hw/hls/ (Vitis 2023.1 and later) define RF_TARGET_HLS, for which all of the above are empty and
 //   RF_HLS_PIPELINE       first statement of a loop body: `#pragma HLS PIPELINE II=1` (empty on the OpenCL targets).
 #ifndef RFRECON_KERNELS_COMMON_TARGET_H
@@ -39,6 +43,12 @@
 #define RF_UNROLL
 #define RF_IVDEP_SAFELEN(n)
 #define RF_PARTITION_COMPLETE
+#endif
+
+#if defined(RF_TARGET_INTEL_FPGA) || defined(RF_TARGET_XILINX_FPGA)
+#define RF_NDRANGE_ENTRIES 0
+#else
+#define RF_NDRANGE_ENTRIES 1
 #endif
 
 #if defined(RF_TARGET_HLS)

@@ -13,6 +13,7 @@
 // Same arithmetic as the C++ reference: no fused multiply-add contraction.
 #pragma OPENCL FP_CONTRACT OFF
 
+#if RF_NDRANGE_ENTRIES
 __kernel void fuse_rows_ndrange(float f, float cx_cam, float cx_proj, float cy, float b, int first_row, int rows,
                                 int width, int proj_width, int iterations, float sigma_disparity_px,
                                 float sigma_step_mm, __global const float* restrict e_cam,
@@ -30,6 +31,7 @@ __kernel void fuse_rows_ndrange(float f, float cx_cam, float cx_proj, float cy, 
   (rig, beta, width, proj_width, iterations, rf_fusion_weights(rig, sigma_disparity_px, sigma_step_mm), e_cam + at,
    e_proj + (size_t)group * RF_LANES * (size_t)proj_width, z_tri + at, runs + at, z + at, c + at, d + at);
 }
+#endif
 
 RF_SINGLE_TASK
 __kernel void fuse_rows_single(float f, float cx_cam, float cx_proj, float cy, float b, int first_row, int rows,

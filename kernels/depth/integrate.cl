@@ -16,6 +16,7 @@
 #include "common/params.h"
 #include "depth/row_interleave.h"
 
+#if RF_NDRANGE_ENTRIES
 __kernel void integrate_rows_ndrange(float f, float cx_cam, float cx_proj, float cy, float b, int first_row, int rows,
                                      int width, int proj_width, int passes, __global const float* restrict e_cam,
                                      __global const float* restrict e_proj, __global const float* restrict z_tri,
@@ -31,6 +32,7 @@ __kernel void integrate_rows_ndrange(float f, float cx_cam, float cx_proj, float
   (rig, beta, width, proj_width, passes, e_cam + at, e_proj + (size_t)group * RF_LANES * (size_t)proj_width, z_tri + at,
    runs + at, z + at);
 }
+#endif
 
 RF_SINGLE_TASK
 __kernel void integrate_rows_single(float f, float cx_cam, float cx_proj, float cy, float b, int first_row, int rows,

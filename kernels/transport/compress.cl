@@ -15,6 +15,7 @@
 #include "common/frame_batch.h"
 #include "transport/compression.h"
 
+#if RF_NDRANGE_ENTRIES
 __kernel void dot_frames_ndrange(RF_FRAME_PARAMETERS, float sample_black, float sample_scale, int fresh,
                                  int frame_count, __global const int* restrict offsets, int spacing,
                                  int projector_width, int projector_height, float noise_threshold,
@@ -44,6 +45,7 @@ __kernel void dot_frames_ndrange(RF_FRAME_PARAMETERS, float sample_black, float 
                          indices, weights, energy);
   }
 }
+#endif
 
 RF_SINGLE_TASK
 __kernel void dot_frames_single(__global const float* restrict frames, int frame_count,
@@ -57,6 +59,7 @@ __kernel void dot_frames_single(__global const float* restrict frames, int frame
                        energy);
 }
 
+#if RF_NDRANGE_ENTRIES
 __kernel void finalize_ndrange(__global const float* restrict white, __global const float* restrict black, int has_dots,
                                int projector_width, float noise_threshold, __global uchar* restrict flags,
                                __global const uint* restrict projector_x, __global const uint* restrict projector_y,
@@ -68,6 +71,7 @@ __kernel void finalize_ndrange(__global const float* restrict white, __global co
                       flags, projector_x, projector_y, indices, weights, energy, correspondence);
   }
 }
+#endif
 
 RF_SINGLE_TASK
 __kernel void finalize_single(__global const float* restrict white, __global const float* restrict black, int has_dots,

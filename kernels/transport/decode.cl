@@ -13,6 +13,7 @@
 #include "common/target.h"
 #include "transport/gray_decode.h"
 
+#if RF_NDRANGE_ENTRIES
 __kernel void gray_pairs_ndrange(RF_FRAME_PARAMETERS, float sample_black, float sample_scale, int pair_count,
                                  __global const uint* restrict pairs, float white_threshold,
                                  __global uint* restrict code_x, __global uint* restrict code_y,
@@ -48,6 +49,7 @@ __kernel void gray_pairs_ndrange(RF_FRAME_PARAMETERS, float sample_black, float 
     flags[c] = f;
   }
 }
+#endif
 
 RF_SINGLE_TASK
 __kernel void gray_pairs_single(__global const float* restrict frames, int pair_count,
@@ -57,6 +59,7 @@ __kernel void gray_pairs_single(__global const float* restrict frames, int pair_
   rf_gray_pairs_pixels(n, pair_count, pairs, white_threshold, frames, code_x, code_y, flags);
 }
 
+#if RF_NDRANGE_ENTRIES
 __kernel void gray_finalize_ndrange(__global const float* restrict white, __global const float* restrict black,
                                     float black_threshold, int projector_width, int projector_height,
                                     __global uint* restrict code_x, __global uint* restrict code_y,
@@ -72,6 +75,7 @@ __kernel void gray_finalize_ndrange(__global const float* restrict white, __glob
                            flags);
   }
 }
+#endif
 
 RF_SINGLE_TASK
 __kernel void gray_finalize_single(__global const float* restrict white, __global const float* restrict black,

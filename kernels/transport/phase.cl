@@ -18,6 +18,7 @@
 #include "common/target.h"
 #include "transport/phase_decode.h"
 
+#if RF_NDRANGE_ENTRIES
 __kernel void phase_steps_ndrange(RF_FRAME_PARAMETERS, float sample_black, float sample_scale, int axis, int step_count,
                                   __global const float* restrict shifts, __global float* restrict sums, uint n) {
   const uint c0 = get_global_id(0) * RF_LANES;
@@ -33,6 +34,7 @@ __kernel void phase_steps_ndrange(RF_FRAME_PARAMETERS, float sample_black, float
     rf_phase_steps_add(c, n, axis, step_count, values, local_shifts, sums);
   }
 }
+#endif
 
 RF_SINGLE_TASK
 __kernel void phase_steps_single(__global const float* restrict frames, int axis, int step_count,
@@ -40,6 +42,7 @@ __kernel void phase_steps_single(__global const float* restrict frames, int axis
   rf_phase_steps_pixels(n, axis, step_count, shifts, frames, sums);
 }
 
+#if RF_NDRANGE_ENTRIES
 __kernel void phase_fold_ndrange(int axis, float period, int coarsest, float middle, int steps, float white_threshold,
                                  __global float* restrict sums, __global float* restrict estimates,
                                  __global uchar* restrict flags, uint n) {
@@ -49,6 +52,7 @@ __kernel void phase_fold_ndrange(int axis, float period, int coarsest, float mid
     rf_phase_fold_pixel(c, n, axis, period, coarsest, middle, steps, white_threshold, sums, estimates, flags);
   }
 }
+#endif
 
 RF_SINGLE_TASK
 __kernel void phase_fold_single(int axis, float period, int coarsest, float middle, int steps, float white_threshold,
@@ -57,6 +61,7 @@ __kernel void phase_fold_single(int axis, float period, int coarsest, float midd
   rf_phase_fold_pixels(n, axis, period, coarsest, middle, steps, white_threshold, sums, estimates, flags);
 }
 
+#if RF_NDRANGE_ENTRIES
 __kernel void phase_beat_ndrange(int axis, int level, int f0, int f1, int f2, float axis_pixels, int steps,
                                  float white_threshold, __global float* restrict sums,
                                  __global float* restrict estimates, __global uchar* restrict flags, uint n) {
@@ -66,6 +71,7 @@ __kernel void phase_beat_ndrange(int axis, int level, int f0, int f1, int f2, fl
     rf_phase_beat_pixel(c, n, axis, level, f0, f1, f2, axis_pixels, steps, white_threshold, sums, estimates, flags);
   }
 }
+#endif
 
 RF_SINGLE_TASK
 __kernel void phase_beat_single(int axis, int level, int f0, int f1, int f2, float axis_pixels, int steps,
@@ -74,6 +80,7 @@ __kernel void phase_beat_single(int axis, int level, int f0, int f1, int f2, flo
   rf_phase_beat_pixels(n, axis, level, f0, f1, f2, axis_pixels, steps, white_threshold, sums, estimates, flags);
 }
 
+#if RF_NDRANGE_ENTRIES
 __kernel void phase_finalize_ndrange(__global const float* restrict white, __global const float* restrict black,
                                      float black_threshold, float white_threshold, int steps, float period_x,
                                      float period_y, int by_order, int projector_width, int projector_height,
@@ -90,6 +97,7 @@ __kernel void phase_finalize_ndrange(__global const float* restrict white, __glo
                             estimates, flags, indices, weights, energy, correspondence);
   }
 }
+#endif
 
 RF_SINGLE_TASK
 __kernel void phase_finalize_single(__global const float* restrict white, __global const float* restrict black,

@@ -6,11 +6,13 @@
 #pragma OPENCL FP_CONTRACT OFF
 #include "transport/sparse_products.h"
 
+#if RF_NDRANGE_ENTRIES
 __kernel void primal_ndrange(__global const int* restrict indices, __global const float* restrict weights,
                              __global const float* restrict light, __global float* restrict image, uint n) {
   const uint c = get_global_id(0);
   if (c < n) image[c] = rf_primal_pixel(c, indices, weights, light);
 }
+#endif
 
 RF_SINGLE_TASK
 __kernel void primal_single(__global const int* restrict indices, __global const float* restrict weights,
@@ -18,12 +20,14 @@ __kernel void primal_single(__global const int* restrict indices, __global const
   rf_primal_pixels(n, indices, weights, light, image);
 }
 
+#if RF_NDRANGE_ENTRIES
 __kernel void dual_ndrange(__global const int* restrict row_start, __global const int* restrict camera_pixel,
                            __global const float* restrict weights, __global const float* restrict light,
                            __global float* restrict image, uint n) {
   const uint p = get_global_id(0);
   if (p < n) image[p] = rf_dual_pixel(p, row_start, camera_pixel, weights, light);
 }
+#endif
 
 RF_SINGLE_TASK
 __kernel void dual_single(__global const int* restrict row_start, __global const int* restrict camera_pixel,

@@ -5,7 +5,10 @@
 // does not divide the tiles' rows (3); the transport kernels, Gray code and phase shifting, equal the C++ reference on
 // the tiny captures. What this
 // shows: the macros leave the kernels' arithmetic unchanged; not what a vendor compiler makes of them.
+#include <algorithm>
+#include <sstream>
 #include <string>
+#include <string_view>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -13,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "host/cl/device_selection.h"
+#include "host/cl/kernel_sources.h"
 #include "host/depth/row_solvers.h"
 #include "host/transport/phase_accumulators.h"
 #include "host/transport/spmv.h"
@@ -118,6 +122,34 @@ TEST_P(FpgaMacrosOnPocl, PhaseSingleEqualsReference) {
                                                            KernelEntry::kSingleWorkItem, options());
     transport::testing::expect_same_phase_transport(
         transport::testing::feed_plan(*single, "phase", capture.sequence, linear, linear), expected);
+  }
+}
+
+// A board binary holds the single work-item entries alone: every kernel file built with the target's macro declares
+// its `_single` entries and no NDRange entry (RF_NDRANGE_ENTRIES, kernels/common/target.h); built without it, both.
+TEST_P(FpgaMacrosOnPocl, BoardProgramsHoldOnlySingleWorkItemEntries) {
+  const auto names_in = [&](std::string_view path, const std::string& options) {
+    const ::cl::Program program = programs_.get(devices_.front(), path, options);
+    std::vector<std::string> names;
+    std::stringstream listed(program.getInfo<CL_PROGRAM_KERNEL_NAMES>());
+    for (std::string name; std::getline(listed, name, ';');) names.push_back(name);
+    std::sort(names.begin(), names.end());
+    return names;
+  };
+  for (const auto& file : cl::embedded_kernel_files()) {
+    if (file.path.size() < 3 || file.path.substr(file.path.size() - 3) != ".cl") continue;
+    SCOPED_TRACE(std::string(file.path));
+    const std::vector<std::string> board = names_in(file.path, options());
+    const std::vector<std::string> everywhere = names_in(file.path, "");
+    ASSERT_FALSE(board.empty());
+    std::vector<std::string> twins;
+    for (const auto& name : board) {
+      ASSERT_TRUE(name.size() > 7 && name.substr(name.size() - 7) == "_single") << name;
+      twins.push_back(name.substr(0, name.size() - 7) + "_ndrange");
+      twins.push_back(name);
+    }
+    std::sort(twins.begin(), twins.end());
+    EXPECT_EQ(everywhere, twins);
   }
 }
 
