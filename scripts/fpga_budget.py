@@ -16,12 +16,13 @@ count against the budget and each kernel's arrays. Not counted: every load / sto
 MLAB), logic and DSP use; only the vendor reports show those.
 
   fpga_budget.py [--root DIR] [--boards DIR] [--board NAME]... [--set NAME=VALUE]... [--cmake PATH] [--clang PATH]
-                 [--scratch DIR] [--verbose] [--markdown | --docs FILE | --update-docs FILE]
+                 [--scratch DIR] [--verbose] [--markdown | --docs FILE | --update-docs FILE | --measured TABLE]
 --markdown prints docs/fpga.md's budget tables; --docs checks that FILE holds them between its markers, and
---update-docs writes them there.
+--update-docs writes them there. --measured TABLE checks PORTS against the accesses the C simulation counted (the
+table of tests/fpga/hls_access_check.cc).
 """
 import argparse
-import difflib
+import collections
 import math
 import os
 import re
@@ -31,44 +32,53 @@ import sys
 import tempfile
 
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree for the modules below
+import docs_table  # noqa: E402
 import fpga_devices  # noqa: E402
 import fpga_kernel_ir  # noqa: E402
 
 # Reads and writes per iteration of each on-chip array of the single work-item entries, per pipelined loop that
-# accesses it (kernels/depth/row_interleave.h and the row functions it calls). The copy loops (rf_load_row_group,
-# rf_store_row_group) take one access per iteration and run alone, so they fit any copy. Every array the IR shows must
-# be here, or be partitioned into registers (RF_PARTITION_COMPLETE).
+# accesses it (kernels/depth/row_interleave.h and the row functions it calls); a loop whose iterations differ lists
+# each kind of iteration. The copy loops (rf_load_row_group, rf_store_row_group) take one access per iteration and run
+# alone, so they fit any copy. Every array the IR shows must be here, or be partitioned into registers
+# (RF_PARTITION_COMPLETE). The C simulation counts the same accesses (tests/fpga/hls_access_check.cc), and
+# --measured checks these figures against its table.
 PORTS = {
     "integrate_rows_single": {
-        "e_cam_rows": [("slope", 2, 0)],   # e_cam at `from` and `u` (row_interleave.h:107)
-        "e_proj_rows": [("slope", 2, 0)],  # rf_sample_row's two gathers of one slope (reciprocity_rows.h:10)
+        "e_cam_rows": [("slope", 2, 0)],   # e_cam at `from` and `u`
+        "e_proj_rows": [("slope", 2, 0)],  # rf_sample_row's two gathers of one slope
         "z_tri_rows": [("slope", 1, 0)],
-        # The seed read (pass > 0), the closing run's rescaled seed and the pixel's depth (row_integration_rows.h:19,
-        # 32, 38): two writes, which only a double-pumped block (aoc) serves at II 1.
-        "z_rows": [("slope", 1, 2)],
+        # The first slope reads what the pass before left (z_befores); the last writes the pixel's depth and a
+        # closing run's rescaled seed.
+        "z_rows": [("slope", 1, 0), ("slope", 0, 2)],
         "run_rows": [("slope", 1, 0)],
         "betas": [("slope", 1, 0)],
-        "states": [("slope", 1, 1)],  # one row's state read and written back
+        "states": [("slope", 1, 1)],  # one row's state read and written back, each field
         "steps": [("slope", 1, 1)],
+        "z_befores": [("slope", 1, 1)],
     },
     "fuse_rows_single": {
-        # Both RK4 increments read e_cam at `from` and `from + 1`: the same two words (row_fusion_rows.h:56-57).
-        "e_cam_rows": [("forward", 2, 0)],
-        "e_proj_rows": [("forward", 16, 0)],  # 2 increments x 4 slopes x rf_sample_row's 2 gathers
+        "e_cam_rows": [("forward", 2, 0)],   # e_cam at `from` and `from + 1`, for both RK4 increments
+        "e_proj_rows": [("forward", 2, 0)],  # RF_FUSE_SLOPES banks: rf_sample_row's two gathers of one slope each
         "z_tri_rows": [("forward", 1, 0)],
-        "z_rows": [("forward", 2, 0), ("backward", 1, 1)],  # z at u and u + 1; z += update (row_interleave.h:165, 185)
+        "z_rows": [("forward", 2, 0), ("backward", 1, 1)],  # z at u and u + 1; z += update
         "c_rows": [("forward", 0, 1), ("backward", 1, 0)],
         "d_rows": [("forward", 0, 1), ("backward", 1, 0)],
-        "run_rows": [("forward", 3, 0), ("backward", 2, 0)],  # codes at u - 1, u, u + 1 (row_interleave.h:158-162)
+        "run_rows": [("forward", 2, 0), ("backward", 2, 0)],  # the code at u + 1 (and at u, at the row's start)
+        "codes": [("forward", 1, 1)],
+        "next_codes": [("forward", 1, 1)],
+        "sweeps": [("forward", 1, 1)],
+        "updates": [("backward", 1, 1)],
         "betas": [("forward", 1, 0)],
     },
 }
+# The pipelined loops PORTS names, by function of kernels/depth/row_interleave.h and order in it, and the kernel.
+LOOPS = {("rf_integrate_rows_interleaved", 0): ("integrate_rows_single", "slope"),
+         ("rf_fuse_rows_interleaved", 0): ("fuse_rows_single", "forward"),
+         ("rf_fuse_rows_interleaved", 1): ("fuse_rows_single", "backward")}
 
 VENDOR_MACRO = {"intel": "RF_TARGET_INTEL_FPGA", "xilinx": "RF_TARGET_XILINX_FPGA"}
 MEMORY_KIND = {"intel": "M20K", "xilinx": "BRAM36"}  # what the tool binds an array to unless told otherwise
 PARTITIONED = re.compile(r"(\w+)\s*\[[^\]]*\]\s*RF_PARTITION_COMPLETE")
-BEGIN = "<!-- fpga_budget.py: begin (python3 scripts/fpga_budget.py --update-docs docs/fpga.md) -->"
-END = "<!-- fpga_budget.py: end -->"
 
 
 class Problem(Exception):
@@ -79,10 +89,10 @@ def copies_for(reads, writes):
     """(copies, true dual-port, double-pumped) of a block array with `reads` and `writes` per iteration at II 1.
 
     A block has two ports (four double-pumped); every copy takes every write, the reads are spread over the copies."""
-    ports = 2 if writes < 2 else 4
-    if writes >= ports:
-        raise Problem(f"{writes} writes per iteration: no block serves them at II 1")
-    copies = max(1, math.ceil(reads / (ports - writes)))
+    ports = 2 if writes < 2 or (writes == 2 and reads == 0) else 4
+    if writes > ports or (writes == ports and reads > 0):
+        raise Problem(f"{reads} reads and {writes} writes per iteration: no block serves them at II 1")
+    copies = 1 if reads == 0 else math.ceil(reads / (ports - writes))
     reads_per_copy = math.ceil(reads / copies)
     true_dual_port = ports == 4 or (reads_per_copy + writes > 1 and (reads_per_copy > 1 or writes > 1))
     return copies, true_dual_port, ports == 4
@@ -301,17 +311,6 @@ def markdown(presets):
     return "\n".join(lines) + "\n"
 
 
-def docs_section(path):
-    """(text before, the generated part, text after) of a Markdown file with the markers."""
-    with open(path, encoding="utf-8") as f:
-        text = f.read()
-    start, end = text.find(BEGIN), text.find(END)
-    if start < 0 or end < start:
-        raise Problem(f"{path}: no lines {BEGIN!r} ... {END!r}")
-    start += len(BEGIN) + 1
-    return text[:start], text[start:end], text[end:]
-
-
 def report(presets, verbose, what_if):
     """Problems (exit 1) and notes, printed; returns the problems' count. What-if: any preset that does not fit."""
     problems = 0
@@ -341,6 +340,39 @@ def report(presets, verbose, what_if):
     return problems
 
 
+def measured_mismatches(root, table_path):
+    """Where PORTS differs from the accesses the C simulation counted (the table tests/fpga/hls_access_check.cc
+    writes): each array's most reads and writes in one iteration of each loop LOOPS names, over its fields and banks."""
+    loop_at, function, counts = {}, None, collections.Counter()
+    with open(os.path.join(root, "kernels", "depth", "row_interleave.h"), encoding="utf-8") as f:
+        for number, line in enumerate(f, 1):
+            found = re.match(r"RF_INLINE void (\w+)\(", line)
+            function = found[1] if found else function
+            if re.match(r"\s*RF_HLS_PIPELINE\b", line):
+                loop_at[number] = LOOPS.get((function, counts[function]))
+                counts[function] += 1
+    measured = collections.defaultdict(lambda: [0, 0])
+    with open(table_path, encoding="utf-8") as f:
+        for row in f:
+            cells = [c.strip() for c in row.strip().strip("|").split("|")]
+            found = re.fullmatch(r"`kernels/depth/row_interleave\.h:(\d+)`", cells[0])
+            if not found or "(AXI" in cells[2] or not loop_at.get(int(found[1])):
+                continue
+            kernel, loop = loop_at[int(found[1])]
+            entry = measured[(kernel, re.sub(r"[\[+].*", "", cells[2]), loop)]
+            entry[0], entry[1] = max(entry[0], int(cells[3])), max(entry[1], int(cells[4]))
+    expected = {}
+    for kernel, arrays in PORTS.items():
+        for name, phases in arrays.items():
+            for loop, reads, writes in phases:
+                entry = expected.setdefault((kernel, name, loop), [0, 0])
+                entry[0], entry[1] = max(entry[0], reads), max(entry[1], writes)
+    return [f"{kernel} {name} in the {loop} loop: PORTS {expected.get((kernel, name, loop))} reads and writes, "
+            f"the C simulation {measured.get((kernel, name, loop))}"
+            for kernel, name, loop in sorted(set(expected) | set(measured))
+            if expected.get((kernel, name, loop)) != measured.get((kernel, name, loop))]
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -357,7 +389,12 @@ def main():
     output.add_argument("--markdown", action="store_true", help="print docs/fpga.md's budget tables")
     output.add_argument("--docs", help="check that this Markdown file holds the budget tables")
     output.add_argument("--update-docs", help="write the budget tables into this Markdown file")
+    output.add_argument("--measured", metavar="TABLE", help="check PORTS against the C simulation's access table")
     args = parser.parse_args()
+    if args.measured:
+        mismatches = measured_mismatches(os.path.abspath(args.root), args.measured)
+        print("\n".join(mismatches) or f"fpga_budget.py: PORTS holds the accesses of {args.measured}")
+        return 1 if mismatches else 0
     if not args.clang or not args.cmake:
         print("fpga_budget.py: needs clang and cmake (scripts/setup.sh installs them)", file=sys.stderr)
         return 2
@@ -371,26 +408,18 @@ def main():
         if args.markdown:
             print(markdown(presets), end="")
             return 0
-        if args.update_docs:
-            before, _, after = docs_section(args.update_docs)
-            with open(args.update_docs, "w", encoding="utf-8") as f:
-                f.write(before + markdown(presets) + after)
-            return 0
-        if args.docs:
-            _, documented, _ = docs_section(args.docs)
-            generated = markdown(presets)
-            if documented != generated:
-                print(f"{args.docs}: the budget tables differ from the budget's (fpga_budget.py --update-docs):")
-                sys.stdout.writelines(difflib.unified_diff(documented.splitlines(True), generated.splitlines(True),
-                                                           "documented", "generated"))
+        if args.update_docs or args.docs:
+            diff = docs_table.sync(args.update_docs or args.docs, "fpga_budget.py", markdown(presets),
+                                   bool(args.update_docs))
+            if diff:
+                print(f"{args.docs}: the budget tables differ from the generated ones (--update-docs):\n{diff}", end="")
                 return 1
-            print(f"fpga_budget.py: {args.docs} holds the budget of {len(presets)} presets", file=sys.stderr)
             return 0
         problems = report(presets, args.verbose, bool(args.set))
         print(f"fpga_budget.py: {len(presets)} presets: {'ok' if not problems else f'{problems} problem(s)'}",
               file=sys.stderr)
         return 1 if problems else 0
-    except Problem as problem:
+    except (Problem, docs_table.MissingMarkers) as problem:
         print(f"fpga_budget.py: {problem}")
         return 1
     finally:

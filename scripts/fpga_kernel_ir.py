@@ -107,10 +107,15 @@ def kernels_of_ir(ir_text):
     return kernels
 
 
-def compile_kernels(clang, cl_path, includes, macro):
-    """{kernel name: Kernel} of one .cl file compiled under `macro` with the include directories given."""
-    command = [clang] + CLANG_OPTIONS + [f"-I{d}" for d in includes] + [f"-D{macro}", cl_path]
+def compile_ir(clang, cl_path, includes, macro, extra_options=()):
+    """The LLVM IR text of one .cl file compiled under `macro` with the include directories and options given."""
+    command = [clang] + CLANG_OPTIONS + list(extra_options) + [f"-I{d}" for d in includes] + [f"-D{macro}", cl_path]
     run = subprocess.run(command, capture_output=True, text=True, check=False)
     if run.returncode != 0:
         raise RuntimeError(f"{' '.join(command)} exited {run.returncode}:\n{run.stderr.strip()}")
-    return kernels_of_ir(run.stdout)
+    return run.stdout
+
+
+def compile_kernels(clang, cl_path, includes, macro):
+    """{kernel name: Kernel} of one .cl file compiled under `macro` with the include directories given."""
+    return kernels_of_ir(compile_ir(clang, cl_path, includes, macro))

@@ -39,12 +39,61 @@ class BlockArithmeticTest(unittest.TestCase):
         self.assertEqual(fpga_budget.copies_for(16, 0), (8, True, False))
         self.assertEqual(fpga_budget.copies_for(3, 0), (2, True, False))
         self.assertEqual(fpga_budget.copies_for(1, 2), (1, True, True))  # only double-pumped
+        self.assertEqual(fpga_budget.copies_for(0, 2), (1, True, False))  # a write on each port
         self.assertEqual(fpga_budget.copies_for(4, 1), (4, False, False))  # every copy takes the write
 
     def test_shell_share(self):
         self.assertEqual(fpga_devices.STRATIX10_2800.available("M20K"), 9962)
         self.assertEqual(fpga_devices.ALVEO_U250.available("BRAM36", 1), 302)  # the static region's SLR
         self.assertEqual(fpga_devices.ALVEO_U250.available("BRAM36", 3), 604)
+
+
+class MeasuredPortsTest(unittest.TestCase):
+    """--measured: PORTS against a C simulation table, the real kernels' loop lines."""
+
+    def table(self, rows):
+        lines = ["| loop | II claimed | memory | reads | writes | II allowed | shortest RAW distance | claimed |",
+                 "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+        path = os.path.join(tempfile.mkdtemp(), "access.md")
+        self.addCleanup(shutil.rmtree, os.path.dirname(path))
+        with open(path, "w", encoding="utf-8") as f:
+            f.write("\n".join(lines + rows) + "\n")
+        return path
+
+    def loop_line(self, function, index):
+        """The line of the index-th RF_HLS_PIPELINE of a function of kernels/depth/row_interleave.h."""
+        with open(os.path.join(ROOT, "kernels", "depth", "row_interleave.h"), encoding="utf-8") as f:
+            lines = f.read().splitlines()
+        start = next(i for i, line in enumerate(lines) if line.startswith(f"RF_INLINE void {function}("))
+        return [i + 1 for i, line in enumerate(lines) if i > start and line.strip() == "RF_HLS_PIPELINE"][index]
+
+    def rows(self, z_rows_reads):
+        """Every array PORTS names, as PORTS says, but the integration's z_rows read `z_rows_reads` times."""
+        rows = []
+        for (function, index), (kernel, loop) in fpga_budget.LOOPS.items():
+            line = self.loop_line(function, index)
+            for name, phases in fpga_budget.PORTS[kernel].items():
+                counts = [(r, w) for l, r, w in phases if l == loop]
+                if not counts:
+                    continue
+                reads, writes = max(c[0] for c in counts), max(c[1] for c in counts)
+                if kernel == "integrate_rows_single" and name == "z_rows":
+                    reads = z_rows_reads
+                rows.append(f"| `kernels/depth/row_interleave.h:{line}` | 1 | {name} | {reads} | {writes} | 1 | - | - |")
+        return rows
+
+    def test_ports_as_counted_pass(self):
+        self.assertEqual(fpga_budget.measured_mismatches(ROOT, self.table(self.rows(1))), [])
+
+    def test_a_read_more_than_ports_says_fails(self):
+        mismatches = fpga_budget.measured_mismatches(ROOT, self.table(self.rows(2)))
+        self.assertEqual(len(mismatches), 1)
+        self.assertIn("integrate_rows_single z_rows in the slope loop", mismatches[0])
+
+    def test_an_array_ports_misses_fails(self):
+        line = self.loop_line("rf_fuse_rows_interleaved", 0)
+        rows = self.rows(1) + [f"| `kernels/depth/row_interleave.h:{line}` | 1 | scratch[1] | 1 | 1 | 1 | - | - |"]
+        self.assertIn("fuse_rows_single scratch in the forward loop", fpga_budget.measured_mismatches(ROOT, self.table(rows))[0])
 
 
 class BudgetTest(unittest.TestCase):
@@ -79,7 +128,7 @@ class BudgetTest(unittest.TestCase):
         self.assertIn("big (Stratix 10 GX/SX 2800) does not fit: M20K blocks of the device:", run.stdout)
         self.assertIn("available (11,721 less 15% for the BSP)", run.stdout)
         self.assertIn("integrate_rows_single e_cam_rows: 2,560 M20K (1 x 1,310,720 x 32 bit)", run.stdout)
-        self.assertIn("fuse_rows_single e_proj_rows: 4,096 M20K (8 x 262,144 x 32 bit)", run.stdout)
+        self.assertIn("fuse_rows_single e_proj_rows: 4,096 M20K (1 x 2,097,152 x 32 bit)", run.stdout)
 
     def test_oversized_amd_preset_fails_per_slr(self):
         # Declared supported (hw/boards/u250.cmake is not), with rows that fit the device but not the depth stage's SLR.
@@ -127,7 +176,7 @@ class BudgetTest(unittest.TestCase):
         self.addCleanup(shutil.rmtree, directory)
         doc = os.path.join(directory, "fpga.md")
         with open(doc, "w", encoding="utf-8") as f:
-            f.write(f"# Budget\n\n{fpga_budget.BEGIN}\n| stale | table |\n{fpga_budget.END}\n\nAfter.\n")
+            f.write("# Budget\n\n<!-- fpga_budget.py: begin -->\n| stale | table |\n<!-- fpga_budget.py: end -->\n\nAfter.\n")
         run = self.budget("--board", "520n", "--docs", doc)
         self.assertEqual(run.returncode, 1, run.stdout + run.stderr)
         self.assertIn("the budget tables differ", run.stdout)
@@ -138,7 +187,7 @@ class BudgetTest(unittest.TestCase):
         self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
         with open(doc, encoding="utf-8") as f:
             text = f.read()
-        self.assertTrue(text.startswith("# Budget\n") and text.endswith(f"{fpga_budget.END}\n\nAfter.\n"))
+        self.assertTrue(text.startswith("# Budget\n") and text.endswith("<!-- fpga_budget.py: end -->\n\nAfter.\n"))
 
 
 if __name__ == "__main__":

@@ -97,6 +97,18 @@ ManifestExpectation host_manifest_expectation(const DeviceInfo& info) {
   }
   expected.target_macros = {target_macro(info)};
   if (info.xilinx_fpga) expected.target_macros.emplace_back("RF_TARGET_HLS");
+  if (info.intel_fpga) {
+    const bool emulated = info.fpga_emulation == "emulator";
+    expected.target = emulated ? "emulator" : "hardware";
+    expected.target_device = emulated ? "the Intel FPGA emulator"
+                                      : "an Intel FPGA board: the emulator shows an emulation platform or device, or "
+                                        "runs with CL_CONTEXT_EMULATOR_DEVICE_INTELFPGA=1";
+  } else if (info.xilinx_fpga) {
+    expected.target = info.fpga_emulation.empty() ? "hw" : info.fpga_emulation;
+    expected.target_device = info.fpga_emulation.empty()
+                                 ? "an AMD/Xilinx board: XCL_EMULATION_MODE is not set"
+                                 : "an XRT emulation device: XCL_EMULATION_MODE=" + info.fpga_emulation;
+  }
   return expected;
 }
 
@@ -131,6 +143,15 @@ BinaryManifest check_binary_manifest(const std::filesystem::path& binary, const 
                                                                        : nlohmann::json(expected.target_macros);
     expect_equal(file, "target_macro", accepted, manifest["target_macro"],
                  expected.target_macros.size() == 1 ? "the device's preamble" : "the ones this device runs");
+  }
+  if (!expected.target.empty() && manifest["target"] != expected.target) {
+    const std::string found = manifest["target"].get<std::string>();
+    const bool report = found == "report";
+    fail(file, "target",
+         "expected \"" + expected.target + "\" (" + expected.target_device + "), found \"" + excerpt(found) + "\": " +
+             (report ? "a report-only compile (aoc -rtl), which no device loads"
+                     : "a binary built for another target than this device's; build and load the " + expected.target +
+                           " binary (docs/fpga.md)"));
   }
   const auto& parameters = manifest["parameters"];
   for (const auto& [name, value] : expected.parameters.items()) {

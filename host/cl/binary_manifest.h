@@ -46,6 +46,11 @@ struct ManifestExpectation {
   std::vector<std::string> kernels;  // kernels the binary must hold: the embedded single work-item entries
   // target_macro(device), or on AMD/Xilinx boards also RF_TARGET_HLS (an xclbin of the HLS C++ tops of hw/hls/)
   std::vector<std::string> target_macros;
+  // The flow target whose binary the device loads (manifest `target`), by its emulation (DeviceInfo::fpga_emulation):
+  // "hardware" or "emulator" on Intel FPGA devices, "hw", "sw_emu" or "hw_emu" on AMD/Xilinx ones; empty for other
+  // devices, which no hw/ flow targets (any target).
+  std::string target;
+  std::string target_device;  // what the device is, for the refusal: "an Intel FPGA board, not emulated"
 };
 ManifestExpectation host_manifest_expectation(const DeviceInfo& info);
 
@@ -58,7 +63,8 @@ struct BinaryManifest {
 };
 
 // binary's manifest (binary + ".json"), read and checked against `expected`: valid JSON, every field of the format
-// with its type, `binary` naming binary's file, `stand_in` false, then `target_macro` (one of the expected),
+// with its type, `binary` naming binary's file, `stand_in` false, then `target_macro` (one of the expected), `target`
+// (the expected one: an emulation binary is refused on a board, a hardware one on an emulator, a report on both),
 // `parameters`, `source_sha256`, `kernels` (a superset of the expected) and `binary_sha256` (the SHA-256 of binary's
 // bytes). Throws BinaryManifestError at the first mismatch. Needs no device.
 BinaryManifest check_binary_manifest(const std::filesystem::path& binary, const ManifestExpectation& expected);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 
 #include <nlohmann/json.hpp>
 
@@ -67,7 +68,21 @@ DeviceInfo query_device_info(const ::cl::Platform& platform, const ::cl::Device&
   info.host_unified_memory = device_param<CL_DEVICE_HOST_UNIFIED_MEMORY>(device) == CL_TRUE;
   info.intel_fpga = contains_ci(info.platform_name, "FPGA") && contains_ci(info.platform_vendor, "Intel");
   info.xilinx_fpga = contains_ci(info.platform_vendor, "Xilinx") || contains_ci(info.platform_name, "Xilinx");
+  info.fpga_emulation = detect_fpga_emulation(info);
   return info;
+}
+
+std::string detect_fpga_emulation(const DeviceInfo& info) {
+  const auto variable = [](const char* name) {
+    const char* value = std::getenv(name);
+    return std::string(value != nullptr ? value : "");
+  };
+  if (info.intel_fpga && (contains_ci(info.platform_name, "Emulat") || contains_ci(info.device_name, "Emulat") ||
+                          !variable("CL_CONTEXT_EMULATOR_DEVICE_INTELFPGA").empty())) {
+    return "emulator";
+  }
+  if (info.xilinx_fpga) return variable("XCL_EMULATION_MODE");
+  return "";
 }
 
 const char* to_string(DeviceKind kind) {

@@ -33,9 +33,17 @@ struct DeviceInfo {
   bool host_unified_memory = false;  // kernels run on the host's memory: a borrowed host range needs no copy
   bool intel_fpga = false;           // platform is Intel's FPGA SDK (aoc binaries)
   bool xilinx_fpga = false;          // platform is AMD/Xilinx XRT (v++ binaries)
+  // The emulation an FPGA device is: "" for a board (and any other device), "emulator" for Intel's emulator, "sw_emu"
+  // or "hw_emu" for XRT's (detect_fpga_emulation).
+  std::string fpga_emulation;
 };
 
 DeviceInfo query_device_info(const ::cl::Platform& platform, const ::cl::Device& device, int index);
+
+// What `info` (an FPGA device) emulates: "emulator" on Intel's FPGA emulation platform or device, or with
+// CL_CONTEXT_EMULATOR_DEVICE_INTELFPGA set (the legacy emulator of SDK 19.x); XCL_EMULATION_MODE's value on XRT; ""
+// otherwise.
+std::string detect_fpga_emulation(const DeviceInfo& info);
 
 const char* to_string(DeviceKind kind);
 

@@ -39,19 +39,41 @@ foreach(target IN ITEMS emulator report hardware)
   add_custom_target(rfrecon_fpga_${target} DEPENDS ${binary} ${binary}.json)
 endforeach()
 
-# With a real aoc, the emulator binary is a test dependency (tests/fpga/CMakeLists.txt): its target, the binary, and
-# the environment that shows the emulated board to the host (SDK 19.x; later SDKs ignore it) and raises the
-# emulator's private memory to twice the depth kernels' on-chip rows (kernels/depth/row_buffers.h: 17 bytes per pixel
-# of an integration row, 25 of a fusion row), which its default refuses with CL_OUT_OF_RESOURCES (Programming Guide
-# 22.4, 8.8).
-if(NOT fpga_stand_in)
-  math(EXPR integrate_bytes "${RFRECON_INTEGRATE_INTERLEAVE} * ${RFRECON_MAX_ROW_WIDTH} * 17")
-  math(EXPR fuse_bytes "${RFRECON_FUSE_INTERLEAVE} * ${RFRECON_MAX_ROW_WIDTH} * 25")
-  if(fuse_bytes GREATER integrate_bytes)
-    set(integrate_bytes ${fuse_bytes})
+# The emulator binary's runs (emulation.env; with a real aoc a test dependency, tests/fpga/CMakeLists.txt): the
+# environment that shows the emulated board to the host (SDK 19.x; later SDKs ignore it) and raises the emulator's
+# private memory, whose default refuses the depth kernels' on-chip rows with CL_OUT_OF_RESOURCES (Programming Guide
+# 22.4, 8.8). CL_CONFIG_CPU_FORCE_PRIVATE_MEM_SIZE is twice the larger kernel's rows, in whole MB, as
+# kernels/depth/row_buffers.h counts them (RF_INTEGRATE_PRIVATE_BYTES, RF_FUSE_PRIVATE_BYTES), evaluated here with this
+# build's parameters, a 4-byte float and the header's numeric macros: 22 MB at the defaults.
+file(READ ${fpga_kernel_dir}/depth/row_buffers.h row_buffers)
+string(REPLACE "\\\n" " " row_buffers "${row_buffers}")
+set(private_bytes 0)
+foreach(kernel IN ITEMS INTEGRATE FUSE)
+  if(NOT row_buffers MATCHES "#define RF_${kernel}_PRIVATE_BYTES ([^\n]*)")
+    message(FATAL_ERROR "${fpga_kernel_dir}/depth/row_buffers.h defines no RF_${kernel}_PRIVATE_BYTES, from which "
+                        "hw/cmake/IntelFlow.cmake sizes the emulator's private memory")
   endif()
-  math(EXPR private_mb "2 * (${integrate_bytes} + 1048575) / 1048576")
-  set_property(GLOBAL PROPERTY RFRECON_FPGA_EMULATION rfrecon_fpga_emulator
-               ${fpga_out}/rfrecon_${RFRECON_FPGA_BOARD}_emulator.aocx CL_CONTEXT_EMULATOR_DEVICE_INTELFPGA=1
-               CL_CONFIG_CPU_FORCE_PRIVATE_MEM_SIZE=${private_mb}MB)
-endif()
+  set(expression "${CMAKE_MATCH_1}")
+  string(REPLACE "(size_t)" "" expression "${expression}")
+  string(REPLACE "sizeof(float)" "4" expression "${expression}")
+  string(REGEX MATCHALL "RF_[A-Z0-9_]+" names "${expression}")
+  foreach(name IN LISTS names)
+    string(REGEX REPLACE "^RF_" "RFRECON_" option ${name})
+    if(DEFINED ${option})
+      set(value ${${option}})
+    elseif(row_buffers MATCHES "#define ${name} ([0-9]+)\n")
+      set(value ${CMAKE_MATCH_1})
+    else()
+      message(FATAL_ERROR "RF_${kernel}_PRIVATE_BYTES (kernels/depth/row_buffers.h): ${name} is neither a parameter "
+                          "nor a number of that header")
+    endif()
+    string(REGEX REPLACE "${name}([^A-Za-z0-9_]|$)" "${value}\\1" expression "${expression}")
+  endforeach()
+  math(EXPR bytes "${expression}")
+  if(bytes GREATER private_bytes)
+    set(private_bytes ${bytes})
+  endif()
+endforeach()
+math(EXPR private_mb "2 * ((${private_bytes} + 1048575) / 1048576)")
+fpga_emulation(rfrecon_fpga_emulator ${fpga_out}/rfrecon_${RFRECON_FPGA_BOARD}_emulator.aocx
+               CL_CONTEXT_EMULATOR_DEVICE_INTELFPGA=1 CL_CONFIG_CPU_FORCE_PRIVATE_MEM_SIZE=${private_mb}MB)

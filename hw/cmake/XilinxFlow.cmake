@@ -1,11 +1,13 @@
 # AMD Vitis flow (v++): Vitis 2019.2 to 2022.2 compile the OpenCL C kernels; 2023.1 and later compile only C++ (HLS)
 # and RTL kernels, so from 2023.1 the flow compiles the HLS C++ tops of hw/hls/ instead, which carry the single
 # work-item entries' names, arguments and bodies (the same xclbin for the host either way). Each single work-item
-# entry is compiled on its own (v++ -c -k), then all are linked into one .xclbin with the board's link configuration
-# (compute units and memory banks).
+# entry is compiled on its own, then all are linked into one .xclbin with the board's link configuration (compute units
+# and memory banks). The HLS tops compile for hw_emu and hw as RFRECON_VITIS_HLS_MODE says (below): `v++ -c -k`, or
+# `v++ -c --mode hls --config` (Vitis 2024.2 and later by default), and for sw_emu always with `v++ -c -k`.
 #   rfrecon_fpga_sw_emu  -> rfrecon_<board>_sw_emu.xclbin and emconfig.json   (minutes)
 #   rfrecon_fpga_hw_emu  -> rfrecon_<board>_hw_emu.xclbin and emconfig.json   (tens of minutes)
-#   rfrecon_fpga_report  the hardware .xo files only: HLS synthesis and its reports under _x.hw/ (tens of minutes)
+#   rfrecon_fpga_report  the hardware .xo files only: HLS synthesis and its reports under _x.hw/ (_x.hls/ with
+#                        v++ --mode hls) (tens of minutes)
 #   rfrecon_fpga_hw      -> rfrecon_<board>.xclbin                             (hours)
 find_program(RFRECON_VXX v++ DOC "AMD Vitis compiler (or a stand-in)")
 find_program(RFRECON_EMCONFIGUTIL emconfigutil DOC "AMD Vitis emulation configuration tool (or a stand-in)")
@@ -41,6 +43,35 @@ else()
   rfrecon_hls_files(fpga_hls_sources ${fpga_kernel_dir})
   list(APPEND fpga_sources ${fpga_hls_sources})
 endif()
+
+# How v++ compiles the HLS C++ tops for hw_emu and hw (and so the report): `kernel`, the classic `v++ -c -t TARGET -k
+# ENTRY FILE.cpp` (UG1393 2023.1; UG1702 2024.2 calls it still supported); `hls`, `v++ -c --mode hls --config
+# ENTRY.cfg` with the [hls] section this flow generates (syn.file, syn.top, syn.cflags, flow_target=vitis, the
+# platform, the .xo), the form UG1700 2025.2 shows, whose .xo serves hw_emu and hw alike; `auto`, hls from Vitis 2024.2.
+# Software emulation compiles with -k in both, the form it needs (UG1393 2023.2, "Software Emulation Build").
+set(RFRECON_VITIS_HLS_MODE auto CACHE STRING "v++ compile of the HLS C++ tops for hw_emu and hw: auto, kernel or hls")
+set_property(CACHE RFRECON_VITIS_HLS_MODE PROPERTY STRINGS auto kernel hls)
+set(vxx_hls_mode ${RFRECON_VITIS_HLS_MODE})
+if(NOT vxx_hls_mode MATCHES "^(auto|kernel|hls)$")
+  message(FATAL_ERROR "RFRECON_VITIS_HLS_MODE=${vxx_hls_mode}: expected auto, kernel or hls")
+elseif(NOT fpga_macro STREQUAL "RF_TARGET_HLS")
+  if(vxx_hls_mode STREQUAL "hls")
+    message(FATAL_ERROR "RFRECON_VITIS_HLS_MODE=hls: v++ ${fpga_tool_version} (${RFRECON_VXX}) compiles the OpenCL C "
+                        "kernels; v++ --mode hls and the HLS C++ tops need Vitis 2023.1 or later")
+  endif()
+  set(vxx_hls_mode "")
+elseif(vxx_hls_mode STREQUAL "auto")
+  if(fpga_tool_version VERSION_LESS 2024.2)
+    set(vxx_hls_mode kernel)
+  else()
+    set(vxx_hls_mode hls)
+  endif()
+endif()
+if(vxx_hls_mode STREQUAL "hls")
+  string(APPEND fpga_kernel_kind " (hw_emu, hw: v++ -c --mode hls)")
+elseif(vxx_hls_mode STREQUAL "kernel")
+  string(APPEND fpga_kernel_kind " (v++ -c -k)")
+endif()
 message(STATUS "FPGA ${RFRECON_FPGA_BOARD} (${RFRECON_FPGA_DESCRIPTION}): v++ ${fpga_tool_version} "
                "--platform ${fpga_device}, ${fpga_kernel_kind}${fpga_stand_in_note}")
 
@@ -60,7 +91,34 @@ foreach(entry IN LISTS fpga_single_kernels)
     set(source ${fpga_hls_top_of_${kernel}})
     list(APPEND depends ${fpga_hls_tops} ${fpga_hls_headers})
   endif()
-  foreach(target IN ITEMS sw_emu hw_emu hw)
+  set(kernel_targets sw_emu hw_emu hw)
+  if(vxx_hls_mode STREQUAL "hls")
+    # One .xo of HLS synthesis for hw_emu and hw, from a generated config: platform, then the [hls] section.
+    set(kernel_targets sw_emu)
+    set(xo ${fpga_out}/xo.hls/${kernel}.xo)
+    set(config ${fpga_out}/hls_config/${kernel}.cfg)
+    string(JOIN " " cflags -I${fpga_kernel_dir} -I${fpga_generated_dir} -I${CMAKE_CURRENT_SOURCE_DIR})
+    file(CONFIGURE OUTPUT ${config} CONTENT "\
+# v++ -c --mode hls configuration of ${kernel}, written by hw/cmake/XilinxFlow.cmake
+platform=${fpga_device}
+
+[hls]
+flow_target=vitis
+syn.file=${source}
+syn.top=${kernel}
+syn.cflags=${cflags}
+package.output.format=xo
+package.output.file=${xo}
+")
+    add_custom_command(OUTPUT ${xo}
+                       COMMAND ${RFRECON_VXX} -c --mode hls --config ${config} --work_dir ${fpga_out}/_x.hls/${kernel}
+                               ${RFRECON_FPGA_EXTRA_FLAGS}
+                       DEPENDS ${depends} ${config} WORKING_DIRECTORY ${fpga_out} VERBATIM
+                       COMMENT "v++ -c --mode hls: ${kernel}")
+    list(APPEND xo_hw_emu ${xo})
+    list(APPEND xo_hw ${xo})
+  endif()
+  foreach(target IN LISTS kernel_targets)
     set(xo ${fpga_out}/xo.${target}/${kernel}.xo)
     add_custom_command(OUTPUT ${xo}
                        COMMAND ${RFRECON_VXX} -c -t ${target} ${vxx_common} -k ${kernel} --temp_dir
@@ -100,9 +158,7 @@ foreach(target IN ITEMS sw_emu hw_emu hw)
   add_custom_target(rfrecon_fpga_${target} DEPENDS ${outputs})
 endforeach()
 
-# With a real v++, the software emulation binary is a test dependency (tests/fpga/CMakeLists.txt): its target, the
-# binary, and the environment XRT needs to run it.
-if(NOT fpga_stand_in)
-  set_property(GLOBAL PROPERTY RFRECON_FPGA_EMULATION rfrecon_fpga_sw_emu
-               ${fpga_out}/rfrecon_${RFRECON_FPGA_BOARD}_sw_emu.xclbin XCL_EMULATION_MODE=sw_emu EMCONFIG_PATH=${fpga_out})
-endif()
+# The software emulation binary's runs (emulation.env; with a real v++ a test dependency, tests/fpga/CMakeLists.txt):
+# the environment XRT needs to run it.
+fpga_emulation(rfrecon_fpga_sw_emu ${fpga_out}/rfrecon_${RFRECON_FPGA_BOARD}_sw_emu.xclbin XCL_EMULATION_MODE=sw_emu
+               EMCONFIG_PATH=${fpga_out})

@@ -1,18 +1,19 @@
 // HLS C++ top of the reciprocity integration (Vitis 2023.1 and later): the body of integrate_rows_single
 // (kernels/depth/row_interleave.h) behind AXI4 masters for the rows and AXI4-Lite for the scalars.
-#define RF_TARGET_HLS  // kernels/depth/row_interleave.h: emit the HLS loop directives
+#define RF_TARGET_HLS  // kernels/common/target.h: the HLS directives
 
 #include "depth/row_interleave.h"
 #include "hls/depth_tops.h"
+#include "hls/hls_top.h"
 
 extern "C" void integrate_rows_single(float f, float cx_cam, float cx_proj, float cy, float b, int first_row, int rows,
                                       int width, int proj_width, int passes, const float* e_cam, const float* e_proj,
                                       const float* z_tri, const unsigned char* runs, float* z) {
-#pragma HLS INTERFACE mode = m_axi port = e_cam offset = slave bundle = gmem0
-#pragma HLS INTERFACE mode = m_axi port = e_proj offset = slave bundle = gmem1
-#pragma HLS INTERFACE mode = m_axi port = z_tri offset = slave bundle = gmem2
-#pragma HLS INTERFACE mode = m_axi port = runs offset = slave bundle = gmem3
-#pragma HLS INTERFACE mode = m_axi port = z offset = slave bundle = gmem4
+  RF_HLS_M_AXI(e_cam, gmem0)
+  RF_HLS_M_AXI(e_proj, gmem1)
+  RF_HLS_M_AXI(z_tri, gmem2)
+  RF_HLS_M_AXI(runs, gmem3)
+  RF_HLS_M_AXI(z, gmem4)
 #pragma HLS INTERFACE mode = s_axilite port = return
   const RfRectifiedRig rig = {f, cx_cam, cx_proj, cy, b};
   rf_integrate_rows_interleaved(rig, first_row, rows, width, proj_width, passes, e_cam, e_proj, z_tri, runs, z);

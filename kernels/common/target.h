@@ -19,6 +19,14 @@
 //
 // The HLS C++ tops of hw/hls/ (Vitis 2023.1 and later) define RF_TARGET_HLS, for which all of the above are empty and
 //   RF_HLS_PIPELINE       first statement of a loop body: `#pragma HLS PIPELINE II=1` (empty on the OpenCL targets).
+//   RF_HLS_PIPELINE_II(n) the same at II n, where the loop's accesses to one AXI bundle allow no less.
+//   RF_HLS_DEPENDENCE(a, d) in a pipelined loop's body: array a's read-after-write dependence spans d iterations
+//                         (`#pragma HLS DEPENDENCE`; Intel's counterpart is RF_IVDEP_SAFELEN before the loop).
+//   RF_ON_CHIP_RAM(a)     after a local array's declaration: a is an on-chip RAM (two ports), empty on every target.
+//   RF_ON_CHIP_BANKS(a, n) the same for n RAMs, a's n equal blocks (`#pragma HLS ARRAY_PARTITION ... type=block`).
+// The C simulation's access check (RF_CSIM_CHECK, common/csim_hooks.h) makes RF_HLS_PIPELINE, RF_HLS_DEPENDENCE,
+// RF_IVDEP_SAFELEN and RF_ON_CHIP_RAM calls that count each RAM's and AXI bundle's accesses per iteration and check
+// every claimed dependence distance (docs/fpga.md#access-and-dependence-check).
 #ifndef RFRECON_KERNELS_COMMON_TARGET_H
 #define RFRECON_KERNELS_COMMON_TARGET_H
 
@@ -51,10 +59,27 @@
 #define RF_NDRANGE_ENTRIES 1
 #endif
 
-#if defined(RF_TARGET_HLS)
-#define RF_HLS_PIPELINE _Pragma("HLS PIPELINE II=1")
+// clang-format off
+#if defined(RF_TARGET_HLS) && defined(RF_CSIM_CHECK)
+#include "common/csim_hooks.h"
+#undef RF_IVDEP_SAFELEN
+#define RF_IVDEP_SAFELEN(n) RF_CSIM_SAFELEN(n)
+#define RF_HLS_PIPELINE_II(n) RF_CSIM_ITERATION(n)
+#define RF_HLS_DEPENDENCE(var, d) RF_CSIM_DEPENDENCE(var, d)
+#define RF_ON_CHIP_RAM(var) RF_CSIM_RAM(var, 1)
+#define RF_ON_CHIP_BANKS(var, n) RF_CSIM_RAM(var, n)
+#elif defined(RF_TARGET_HLS)
+#define RF_HLS_PIPELINE_II(n) RF_PRAGMA_(HLS PIPELINE II=n)
+#define RF_HLS_DEPENDENCE(var, d) RF_PRAGMA_(HLS DEPENDENCE variable=var inter RAW distance=d true)
+#define RF_ON_CHIP_RAM(var)
+#define RF_ON_CHIP_BANKS(var, n) RF_PRAGMA_(HLS ARRAY_PARTITION variable=var type=block factor=n)
 #else
-#define RF_HLS_PIPELINE
+#define RF_HLS_PIPELINE_II(n)
+#define RF_HLS_DEPENDENCE(var, d)
+#define RF_ON_CHIP_RAM(var)
+#define RF_ON_CHIP_BANKS(var, n)
 #endif
+#define RF_HLS_PIPELINE RF_HLS_PIPELINE_II(1)
+// clang-format on
 
 #endif  // RFRECON_KERNELS_COMMON_TARGET_H

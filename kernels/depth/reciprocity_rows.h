@@ -58,21 +58,22 @@ RF_INLINE void RF_ROW_FN(rf_rk4_stage)(RfRectifiedRig rig, RF_REAL beta, int u, 
   rk->k_last = k;
 }
 
-// The RK4 increment z(u + 1) - z(u) from column u (integer, u + 1 < width) at depth z: its four stages in turn.
-// *ok is cleared when any of the four slopes breaks down.
-RF_INLINE RF_REAL RF_ROW_FN(rf_rk4_increment)(RfRectifiedRig rig, RF_REAL beta, int u, RF_REAL z,
-                                              RF_ROW_SPACE const float* e_cam_row, RF_ROW_SPACE const float* e_proj_row,
+// The RK4 increment z(u + 1) - z(u) from column u (integer, u + 1 < width) at depth z, e0 and e1 being e_cam at u and
+// u + 1: its four stages in turn, stage s reading the projector row at e_proj_row + s * slope_stride (0: one row; the
+// fusion's on-chip rows give each slope its own copy, two reads of a RAM per slope). *ok is cleared when any of the
+// four slopes breaks down.
+RF_INLINE RF_REAL RF_ROW_FN(rf_rk4_increment)(RfRectifiedRig rig, RF_REAL beta, int u, RF_REAL z, RF_REAL e0,
+                                              RF_REAL e1, RF_ROW_SPACE const float* e_proj_row, int slope_stride,
                                               int proj_width, RF_INT* ok) {
   RF_LANE_TYPE(RfRk4Stages) rk;
   rk.k_last = 0.0f;
   rk.sum = 0.0f;
   rk.ok = RF_TRUE;
-  const RF_REAL e0 = RF_LOAD(e_cam_row, u), e1 = RF_LOAD(e_cam_row, u + 1);
   // Written out rather than looped, so that every stage's selects fold away.
   RF_ROW_FN(rf_rk4_stage)(rig, beta, u, 0, z, e0, e1, e_proj_row, proj_width, &rk);
-  RF_ROW_FN(rf_rk4_stage)(rig, beta, u, 1, z, e0, e1, e_proj_row, proj_width, &rk);
-  RF_ROW_FN(rf_rk4_stage)(rig, beta, u, 2, z, e0, e1, e_proj_row, proj_width, &rk);
-  RF_ROW_FN(rf_rk4_stage)(rig, beta, u, 3, z, e0, e1, e_proj_row, proj_width, &rk);
+  RF_ROW_FN(rf_rk4_stage)(rig, beta, u, 1, z, e0, e1, e_proj_row + slope_stride, proj_width, &rk);
+  RF_ROW_FN(rf_rk4_stage)(rig, beta, u, 2, z, e0, e1, e_proj_row + 2 * slope_stride, proj_width, &rk);
+  RF_ROW_FN(rf_rk4_stage)(rig, beta, u, 3, z, e0, e1, e_proj_row + 3 * slope_stride, proj_width, &rk);
   *ok = *ok & rk.ok;
-  return rk.sum / 6.0f;
+  return rk.sum * (1.0f / 6.0f);  // multiplied, not divided: a divider would lengthen the pipelines (docs/fpga.md)
 }

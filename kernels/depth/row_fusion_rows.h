@@ -40,11 +40,12 @@ RF_INLINE RF_REAL RF_ROW_FN(rf_fuse_backward)(RF_INT run_ends, RF_REAL c, RF_REA
 // continues the run: z and z_next are the current depths at u and u + 1 (z_next unused at the run's last pixel), t the
 // triangulated depth at u (NaN where none). Leaves the sweep's coefficients at u in state->c and state->d and the link
 // from u to u + 1 in the rest of the state. The link's slopes are evaluated at the run's last pixel too (on lanes,
-// unless no lane links), and not used. Rows of width >= 2.
+// unless no lane links), and not used. Rows of width >= 2. The two increments' eight slopes read the projector row at
+// e_proj_row + s * slope_stride, s = 0 to 7 (rf_rk4_increment).
 RF_INLINE void RF_ROW_FN(rf_fuse_forward)(RfRectifiedRig rig, RF_REAL beta, int u, int width, RF_INT linked_next,
                                           int proj_width, RfFusionWeights weights, RF_ROW_SPACE const float* e_cam_row,
-                                          RF_ROW_SPACE const float* e_proj_row, RF_REAL z, RF_REAL z_next, RF_REAL t,
-                                          RF_LANE_TYPE(RfSweepState) * state) {
+                                          RF_ROW_SPACE const float* e_proj_row, int slope_stride, RF_REAL z,
+                                          RF_REAL z_next, RF_REAL t, RF_LANE_TYPE(RfSweepState) * state) {
   const RF_REAL sigma_z = z * z * weights.depth_noise_scale;
   const RF_REAL lambda = RF_SELECT(RF_REAL, t == t, 1.0f / (sigma_z * sigma_z), 0.0f);
   RF_INT ok = RF_TRUE;
@@ -53,8 +54,10 @@ RF_INLINE void RF_ROW_FN(rf_fuse_forward)(RfRectifiedRig rig, RF_REAL beta, int 
   RF_REAL h_shifted = 0.0f;
   if (RF_ANY(linked_next)) {                    // the slopes matter only on a link to the next pixel
     const int from = RF_MIN_INT(u, width - 2);  // at the row's last pixel, any step inside the row
-    h = RF_ROW_FN(rf_rk4_increment)(rig, beta, from, z, e_cam_row, e_proj_row, proj_width, &ok);
-    h_shifted = RF_ROW_FN(rf_rk4_increment)(rig, beta, from, z + dz, e_cam_row, e_proj_row, proj_width, &ok);
+    const RF_REAL e0 = RF_LOAD(e_cam_row, from), e1 = RF_LOAD(e_cam_row, from + 1);
+    h = RF_ROW_FN(rf_rk4_increment)(rig, beta, from, z, e0, e1, e_proj_row, slope_stride, proj_width, &ok);
+    h_shifted = RF_ROW_FN(rf_rk4_increment)(rig, beta, from, z + dz, e0, e1, e_proj_row + 4 * slope_stride,
+                                            slope_stride, proj_width, &ok);
   }
   const RF_INT linked = linked_next & ok;  // the link from u to u + 1
   const RF_REAL mu_next = RF_SELECT(RF_REAL, linked, weights.mu, 0.0f);
@@ -95,7 +98,7 @@ RF_INLINE void RF_ROW_FN(rf_fuse_row)(RfRectifiedRig rig, RF_REAL beta, int widt
         next.c = RF_SELECT(RF_REAL, starts, 0.0f, next.c);
         next.d = RF_SELECT(RF_REAL, starts, 0.0f, next.d);
         RF_ROW_FN(rf_fuse_forward)
-        (rig, beta, u, width, next_code == RF_RUN_CONTINUE, proj_width, weights, e_cam_row, e_proj_row,
+        (rig, beta, u, width, next_code == RF_RUN_CONTINUE, proj_width, weights, e_cam_row, e_proj_row, 0,
          RF_LOAD(z_row, u), RF_LOAD(z_row, RF_MIN_INT(u + 1, width - 1)), RF_LOAD(z_tri_row, u), &next);
         const RF_INT masked = code == RF_RUN_MASKED;
         state.mu = RF_SELECT(RF_REAL, masked, state.mu, next.mu);

@@ -21,15 +21,16 @@ RF_INLINE void RF_ROW_FN(rf_close_run)(RF_LANE_TYPE(RfRunState) * state, RF_ROW_
   state->start = RF_SELECT(RF_INT, closes, -1, state->start);
 }
 
-// Pixel u of pass `pass` (of `passes`) given its run code, its triangulated depth and the RK4 increment into it from
-// u - 1 at state->z (used only where the run continues; ok cleared where the step broke down).
+// Pixel u of pass `pass` (of `passes`) given its run code, its triangulated depth, what z_row held at u before this
+// pass wrote it (z_before: the seed the pass before left there) and the RK4 increment into it from u - 1 at state->z
+// (used only where the run continues; ok cleared where the step broke down).
 RF_INLINE void RF_ROW_FN(rf_integrate_pixel_step)(int u, int pass, int passes, RF_INT code, RF_REAL z_tri,
-                                                  RF_REAL increment, RF_INT ok, RF_ROW_SPACE float* z_row,
-                                                  RF_LANE_TYPE(RfRunState) * state) {
+                                                  RF_REAL z_before, RF_REAL increment, RF_INT ok,
+                                                  RF_ROW_SPACE float* z_row, RF_LANE_TYPE(RfRunState) * state) {
   const RF_INT masked = code == RF_RUN_MASKED, starts = code == RF_RUN_START, continues = code == RF_RUN_CONTINUE;
   RF_ROW_FN(rf_close_run)(state, z_row, code != RF_RUN_CONTINUE, pass + 1 < passes);
   // A run starting here starts from its triangulated depth, then from the seed the pass before left in z_row.
-  const RF_REAL z_start = pass == 0 ? z_tri : RF_LOAD(z_row, u);
+  const RF_REAL z_start = pass == 0 ? z_tri : z_before;
   state->start = RF_SELECT(RF_INT, starts, u, state->start);
   state->count = RF_SELECT(RF_INT, starts, 0, state->count);
   state->sum_rel = RF_SELECT(RF_REAL, starts, 0.0f, state->sum_rel);
@@ -52,10 +53,13 @@ RF_INLINE void RF_ROW_FN(rf_integrate_pixel)(RfRectifiedRig rig, RF_REAL beta, i
   RF_INT ok = RF_TRUE;
   RF_REAL increment = 0.0f;
   if (RF_ANY(code == RF_RUN_CONTINUE)) {  // used only where the run continues
-    increment =
-        RF_ROW_FN(rf_rk4_increment)(rig, beta, RF_MAX_INT(u - 1, 0), state->z, e_cam_row, e_proj_row, proj_width, &ok);
+    const int from = RF_MAX_INT(u - 1, 0);
+    increment = RF_ROW_FN(rf_rk4_increment)(rig, beta, from, state->z, RF_LOAD(e_cam_row, from),
+                                            RF_LOAD(e_cam_row, from + 1), e_proj_row, 0, proj_width, &ok);
   }
-  RF_ROW_FN(rf_integrate_pixel_step)(u, pass, passes, code, RF_LOAD(z_tri_row, u), increment, ok, z_row, state);
+  const RF_REAL z_before = pass == 0 ? 0.0f : RF_LOAD(z_row, u);
+  RF_ROW_FN(rf_integrate_pixel_step)
+  (u, pass, passes, code, RF_LOAD(z_tri_row, u), z_before, increment, ok, z_row, state);
 }
 
 // The whole row: `passes` shooting passes (>= 1) over every run. Writes z_row (NaN where masked).

@@ -306,7 +306,7 @@ RF_INLINE void rf_dot_frames_pixels(unsigned n, int frame_count, RF_GLOBAL const
   rf_load_dot_offsets(offsets, offsets_x, offsets_y);
   RF_PIPELINE_II(1)
   for (unsigned c = 0; c < n; ++c) {
-    RF_HLS_PIPELINE
+    RF_HLS_PIPELINE_II(RF_FRAME_BATCH)  // a beat per frame sample, and per ELL entry (RF_K <= RF_FRAME_BATCH)
     rf_dot_frames_pixel(c, n, frame_count, offsets_x, offsets_y, grid, frames, black, flags, projector_x, projector_y,
                         indices, weights, energy);
   }
@@ -367,7 +367,7 @@ RF_INLINE void rf_finalize_pixels(unsigned n, RF_GLOBAL const float* white, RF_G
   const float inverse_width = 1.0f / (float)projector_width;
   RF_PIPELINE_II(1)
   for (unsigned c = 0; c < n; ++c) {
-    RF_HLS_PIPELINE
+    RF_HLS_PIPELINE_II(RF_K)  // one AXI beat per ELL entry
     rf_finalize_pixel(c, white[c], black[c], has_dots, projector_width, inverse_width, noise_threshold, flags,
                       projector_x, projector_y, indices, weights, energy, correspondence);
   }

@@ -157,7 +157,7 @@ RF_INLINE void rf_gray_pairs_pixels(unsigned n, int pair_count, RF_GLOBAL const 
   rf_load_gray_pairs(pairs, masks, axes);
   RF_PIPELINE_II(1)
   for (unsigned c = 0; c < n; ++c) {
-    RF_HLS_PIPELINE
+    RF_HLS_PIPELINE_II(RF_FRAME_BATCH)  // one AXI beat per frame sample (2 x RF_GRAY_PAIR_BATCH)
     rf_gray_pairs_pixel(c, n, pair_count, masks, axes, white_threshold, frames, code_x, code_y, flags);
   }
 }

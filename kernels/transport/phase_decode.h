@@ -186,7 +186,7 @@ RF_INLINE void rf_phase_steps_pixels(unsigned n, int axis, int step_count, RF_GL
   rf_load_phase_shifts(shifts, local_shifts);
   RF_PIPELINE_II(1)
   for (unsigned c = 0; c < n; ++c) {
-    RF_HLS_PIPELINE
+    RF_HLS_PIPELINE_II(RF_FRAME_BATCH)  // one AXI beat per frame sample
     float values[RF_FRAME_BATCH] RF_PARTITION_COMPLETE;
     RF_UNROLL
     for (int p = 0; p < RF_FRAME_BATCH; ++p) values[p] = p < step_count ? frames[(size_t)p * n + c] : 0.0f;
@@ -199,7 +199,7 @@ RF_INLINE void rf_phase_fold_pixels(unsigned n, int axis, float period, int coar
                                     RF_GLOBAL unsigned char* flags) {
   RF_PIPELINE_II(1)
   for (unsigned c = 0; c < n; ++c) {
-    RF_HLS_PIPELINE
+    RF_HLS_PIPELINE_II(2)  // two of the pixel's sums read and written
     rf_phase_fold_pixel(c, n, axis, period, coarsest, middle, steps, white_threshold, sums, estimates, flags);
   }
 }
@@ -209,7 +209,7 @@ RF_INLINE void rf_phase_beat_pixels(unsigned n, int axis, int level, int f0, int
                                     RF_GLOBAL unsigned char* flags) {
   RF_PIPELINE_II(1)
   for (unsigned c = 0; c < n; ++c) {
-    RF_HLS_PIPELINE
+    RF_HLS_PIPELINE_II(2)  // two of the pixel's sums and estimates read
     rf_phase_beat_pixel(c, n, axis, level, f0, f1, f2, axis_pixels, steps, white_threshold, sums, estimates, flags);
   }
 }
@@ -224,7 +224,7 @@ RF_INLINE void rf_phase_finalize_pixels(unsigned n, RF_GLOBAL const float* white
                                         RF_GLOBAL float* correspondence) {
   RF_PIPELINE_II(1)
   for (unsigned c = 0; c < n; ++c) {
-    RF_HLS_PIPELINE
+    RF_HLS_PIPELINE_II(4)  // the pixel's four sums read
     rf_phase_finalize_pixel(c, n, white[c], black[c], black_threshold, white_threshold, steps, period_x, period_y,
                             by_order, projector_width, projector_height, entries_per_pixel, code_x, code_y, sums,
                             estimates, flags, indices, weights, energy, correspondence);

@@ -26,7 +26,7 @@ RF_INLINE void rf_primal_pixels(unsigned n, RF_GLOBAL const int* indices, RF_GLO
                                 RF_GLOBAL const float* light, RF_GLOBAL float* image) {
   RF_PIPELINE_II(1)
   for (unsigned c = 0; c < n; ++c) {
-    RF_HLS_PIPELINE
+    RF_HLS_PIPELINE_II(RF_K)  // one AXI beat per ELL entry
     image[c] = rf_primal_pixel(c, indices, weights, light);
   }
 }

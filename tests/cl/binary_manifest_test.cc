@@ -13,11 +13,13 @@
 
 #include "host/cl/kernel_sources.h"
 #include "kernels/common/params.h"
+#include "tests/common/scoped_env.h"
 #include "tests/common/temp_dir.h"
 
 namespace rfrecon::cl {
 namespace {
 
+using rfrecon::testing::ScopedEnv;
 using ::testing::HasSubstr;
 
 // A stand-in flow of hw/: the board, the stand-in tools as configure options, the environment of both steps, the
@@ -29,11 +31,19 @@ StandInFlow intel_emulator() {
   return {"520n", "-DRFRECON_AOC=\"" + std::string(RFRECON_SOURCE_DIR) + "/tests/fpga/bin/aoc\"", "",
           "rfrecon_fpga_emulator", "rfrecon_520n_emulator.aocx"};
 }
-// The u250 flow of the HLS C++ tops, as Vitis 2023.1 and later build them.
+// The u250 flow of the HLS C++ tops, as Vitis 2023.1 and later build them (v++ -c -k).
 StandInFlow u250_hls_sw_emu() {
   const std::string bin = std::string(RFRECON_SOURCE_DIR) + "/tests/fpga/bin";
   return {"u250", "-DRFRECON_VXX=\"" + bin + "/v++\" -DRFRECON_EMCONFIGUTIL=\"" + bin + "/emconfigutil\"",
           "RFRECON_STANDIN_VERSION=2023.1 ", "rfrecon_fpga_sw_emu", "rfrecon_u250_sw_emu.xclbin"};
+}
+// The same flow's hardware emulation binary as Vitis 2025.1 builds it: each top by v++ -c --mode hls.
+StandInFlow u250_hls_mode_hw_emu() {
+  StandInFlow flow = u250_hls_sw_emu();
+  flow.environment = "RFRECON_STANDIN_VERSION=2025.1 ";
+  flow.target = "rfrecon_fpga_hw_emu";
+  flow.binary = "rfrecon_u250_hw_emu.xclbin";
+  return flow;
 }
 
 // Runs `flow` in `build` (with further configure options) and returns the manifest it wrote.
@@ -68,6 +78,7 @@ class BinaryManifestTest : public ::testing::Test {
   void SetUp() override {
     intel_.intel_fpga = true;
     intel_.compiler_available = false;
+    intel_.fpga_emulation = "emulator";  // the device the flow's binary, an emulator one, is for
   }
 
   // Writes `manifest` beside a binary named after its `binary` field: a copy of the flow's (stand-in) binary, which
@@ -140,12 +151,107 @@ TEST_F(BinaryManifestTest, BinaryChangedSinceItsManifestIsRefused) {
   EXPECT_THAT(refusal(binary, "binary_sha256"), HasSubstr("replaced without its manifest"));
 }
 
-// The flow records RFRECON_FPGA_EXTRA_FLAGS in the manifest, one string per flag, and the host reads them back.
+// The flow records RFRECON_FPGA_EXTRA_FLAGS in the manifest, one string per flag, and the host reads them back (and
+// logs them when it loads the binary, host/cl/program_cache.cc).
 TEST_F(BinaryManifestTest, ExtraFlagsAreRecorded) {
   EXPECT_EQ(real_manifest().at("extra_flags"), nlohmann::json::array());
   rfrecon::testing::TempDir other("manifest_flow_flags");
-  const auto manifest = run_flow(other.path(), "\"-DRFRECON_FPGA_EXTRA_FLAGS=-DRF_TEST_A=1;-DRF_TEST_B=1,2\"");
-  EXPECT_EQ(manifest.at("extra_flags"), (nlohmann::json{"-DRF_TEST_A=1", "-DRF_TEST_B=1,2"}));
+  auto manifest = run_flow(other.path(), "\"-DRFRECON_FPGA_EXTRA_FLAGS=-DRF_TEST_A=1;-DRF_TEST_B=1,2\"");
+  const nlohmann::json flags{"-DRF_TEST_A=1", "-DRF_TEST_B=1,2"};
+  EXPECT_EQ(manifest.at("extra_flags"), flags);
+  manifest["stand_in"] = false;
+  const auto binary = other.path() / "rfrecon_520n_emulator.aocx";
+  std::ofstream(binary.string() + ".json") << manifest.dump(2);
+  EXPECT_EQ(check_binary_manifest(binary, host_manifest_expectation(intel_)).extra_flags, flags);
+  manifest["extra_flags"] = {"-DRF_TEST_A=1", 2};
+  std::ofstream(binary.string() + ".json") << manifest.dump(2);
+  EXPECT_THAT(refusal(binary, "extra_flags"), HasSubstr("array of strings"));
+}
+
+// The binary's target against the device's emulation: an emulator binary is refused on a board, a hardware one on
+// the emulator, and a report (aoc -rtl, no binary a device loads) on both.
+TEST_F(BinaryManifestTest, EmulatorBinaryOnABoardIsRefused) {
+  const auto binary = write(real_manifest());
+  DeviceInfo board = intel_;
+  board.fpga_emulation.clear();
+  const std::string message = refusal(binary, "target", &board);
+  EXPECT_THAT(message, HasSubstr("expected \"hardware\""));
+  EXPECT_THAT(message, HasSubstr("found \"emulator\""));
+}
+
+TEST_F(BinaryManifestTest, HardwareBinaryOnTheEmulatorIsRefused) {
+  auto manifest = real_manifest();
+  manifest["target"] = "hardware";
+  const auto binary = write(manifest);
+  EXPECT_THAT(refusal(binary, "target"), HasSubstr("expected \"emulator\""));
+  DeviceInfo board = intel_;
+  board.fpga_emulation.clear();
+  EXPECT_NO_THROW((void)check_binary_manifest(binary, host_manifest_expectation(board)));
+}
+
+TEST_F(BinaryManifestTest, ReportIsRefused) {
+  auto manifest = real_manifest();
+  manifest["target"] = "report";
+  const auto binary = write(manifest);
+  EXPECT_THAT(refusal(binary, "target"), HasSubstr("report-only"));
+  DeviceInfo board = intel_;
+  board.fpga_emulation.clear();
+  EXPECT_THAT(refusal(binary, "target", &board), HasSubstr("report-only"));
+}
+
+// On XRT the target must be XCL_EMULATION_MODE's, or hw when it is not set.
+TEST_F(BinaryManifestTest, XrtTargetIsTheEmulationMode) {
+  auto manifest = real_manifest();
+  manifest["target_macro"] = "RF_TARGET_XILINX_FPGA";
+  manifest["target"] = "sw_emu";
+  const auto binary = write(manifest);
+  DeviceInfo xilinx;
+  xilinx.xilinx_fpga = true;
+  xilinx.fpga_emulation = "sw_emu";
+  EXPECT_NO_THROW((void)check_binary_manifest(binary, host_manifest_expectation(xilinx)));
+  xilinx.fpga_emulation = "hw_emu";
+  EXPECT_THAT(refusal(binary, "target", &xilinx), HasSubstr("XCL_EMULATION_MODE=hw_emu"));
+  xilinx.fpga_emulation.clear();
+  EXPECT_THAT(refusal(binary, "target", &xilinx), HasSubstr("expected \"hw\""));
+}
+
+// Other devices (a PoCL device made to look like a board) have no flow target: any is accepted.
+TEST_F(BinaryManifestTest, OtherDevicesTakeAnyTarget) {
+  auto manifest = real_manifest();
+  manifest["target_macro"] = "";
+  const auto binary = write(manifest);
+  DeviceInfo accelerator;
+  accelerator.kind = DeviceKind::kAccelerator;
+  EXPECT_TRUE(host_manifest_expectation(accelerator).target.empty());
+  EXPECT_NO_THROW((void)check_binary_manifest(binary, host_manifest_expectation(accelerator)));
+}
+
+// Where an FPGA device's emulation comes from: Intel's emulation platform or device, the legacy emulator's variable,
+// XRT's XCL_EMULATION_MODE.
+TEST(ManifestTargetTest, DeviceEmulationIsDetectedFromThePlatformAndTheEnvironment) {
+  const ScopedEnv no_legacy("CL_CONTEXT_EMULATOR_DEVICE_INTELFPGA", nullptr);
+  const ScopedEnv no_xrt("XCL_EMULATION_MODE", nullptr);
+  DeviceInfo intel;
+  intel.intel_fpga = true;
+  intel.platform_name = "Intel(R) FPGA SDK for OpenCL(TM)";
+  intel.device_name = "p520_max_sg280l : BittWare Stratix 10 OpenCL platform (aclbitt_s10_pcie0)";
+  EXPECT_EQ(detect_fpga_emulation(intel), "");
+  intel.platform_name = "Intel(R) FPGA Emulation Platform for OpenCL(TM)";
+  intel.device_name = "Intel(R) FPGA Emulation Device";
+  EXPECT_EQ(detect_fpga_emulation(intel), "emulator");
+  DeviceInfo xilinx;
+  xilinx.xilinx_fpga = true;
+  xilinx.platform_name = "Xilinx";
+  EXPECT_EQ(detect_fpga_emulation(xilinx), "");
+  {
+    const ScopedEnv legacy("CL_CONTEXT_EMULATOR_DEVICE_INTELFPGA", "1");
+    const ScopedEnv xrt("XCL_EMULATION_MODE", "sw_emu");
+    EXPECT_EQ(detect_fpga_emulation(xilinx), "sw_emu");
+    intel.platform_name = "Intel(R) FPGA SDK for OpenCL(TM)";
+    intel.device_name = "EmulatorDevice";
+    EXPECT_EQ(detect_fpga_emulation(intel), "emulator");
+    EXPECT_EQ(detect_fpga_emulation(DeviceInfo{}), "") << "a CPU emulates nothing";
+  }
 }
 
 TEST_F(BinaryManifestTest, StandInOutputIsRefused) {
@@ -214,6 +320,7 @@ TEST_F(BinaryManifestTest, MissingKernelIsRefused) {
 TEST_F(BinaryManifestTest, HlsTopsBinaryIsForAmdBoardsOnly) {
   auto manifest = real_manifest();
   manifest["target_macro"] = "RF_TARGET_HLS";
+  manifest["target"] = "hw";
   manifest["source_sha256"] = std::string(embedded_hls_sources_sha256());
   const auto binary = write(manifest);
   DeviceInfo xilinx;
@@ -235,10 +342,38 @@ TEST_F(BinaryManifestTest, HlsBinaryHashCoversTheTops) {
   std::ofstream(binary.string() + ".json") << manifest.dump(2);
   DeviceInfo xilinx;
   xilinx.xilinx_fpga = true;
+  xilinx.fpga_emulation = "sw_emu";
   EXPECT_NO_THROW((void)check_binary_manifest(binary, host_manifest_expectation(xilinx)));
   manifest["source_sha256"] = std::string(embedded_kernel_sources_sha256());
   std::ofstream(binary.string() + ".json") << manifest.dump(2);
   EXPECT_THAT(refusal(binary, "source_sha256", &xilinx), HasSubstr("HLS C++ tops"));
+}
+
+// The u250 flow at Vitis 2025.1 compiles the tops with v++ -c --mode hls: the hardware emulation binary's manifest has
+// the tops' hash and is accepted under XCL_EMULATION_MODE=hw_emu, refused under sw_emu and on a board; a binary
+// changed since (the one file the host loads) is refused naming it.
+TEST_F(BinaryManifestTest, HlsModeBinaryOfVitis2025IsChecked) {
+  rfrecon::testing::TempDir hls("manifest_flow_hls_mode");
+  const StandInFlow flow = u250_hls_mode_hw_emu();
+  auto manifest = run_flow(hls.path(), "", flow);
+  ASSERT_FALSE(manifest.empty());
+  EXPECT_EQ(manifest.at("tool_version"), "2025.1");
+  EXPECT_EQ(manifest.at("target"), "hw_emu");
+  EXPECT_EQ(manifest.at("source_sha256"), std::string(embedded_hls_sources_sha256()));
+  const auto binary = hls.path() / flow.binary;
+  manifest["stand_in"] = false;
+  std::ofstream(binary.string() + ".json") << manifest.dump(2);
+  DeviceInfo xilinx;
+  xilinx.xilinx_fpga = true;
+  xilinx.fpga_emulation = "hw_emu";
+  EXPECT_NO_THROW((void)check_binary_manifest(binary, host_manifest_expectation(xilinx)));
+  xilinx.fpga_emulation = "sw_emu";
+  EXPECT_THAT(refusal(binary, "target", &xilinx), HasSubstr("found \"hw_emu\""));
+  xilinx.fpga_emulation.clear();
+  (void)refusal(binary, "target", &xilinx);
+  xilinx.fpga_emulation = "hw_emu";
+  std::ofstream(binary, std::ios::app) << "relinked";
+  EXPECT_THAT(refusal(binary, "binary_sha256", &xilinx), HasSubstr(flow.binary));
 }
 
 TEST_F(BinaryManifestTest, OtherTargetMacroIsRefused) {

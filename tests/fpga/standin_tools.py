@@ -4,6 +4,8 @@ line against the options the flows use, logs it (one JSON array per line to $RFR
 its outputs as text files marked "rfrecon stand-in", which no OpenCL runtime would load.
 
   standin_tools.py aoc|v++|emconfigutil ARGS...   (tests/fpga/bin/ holds wrappers named like the real tools)
+v++ takes both forms of compiling an HLS C++ top: `v++ -c -t TARGET -k TOP FILE.cpp` and `v++ -c --mode hls --config
+FILE.cfg` (the platform and an [hls] section: flow_target=vitis, syn.file, syn.top, syn.cflags, package.output.*).
 Exit status 0, or 2 with a message when the command line is wrong. $RFRECON_STANDIN_VERSION overrides the version.
 """
 import json
@@ -86,11 +88,91 @@ def vxx_version():
     return os.environ.get("RFRECON_STANDIN_VERSION", "2022.2")
 
 
+def vxx_at_least(version):
+    return tuple(int(part) for part in vxx_version().split(".")[:2]) >= version
+
+
+# The keys a `v++ -c --mode hls` configuration may hold (UG1702 / UG1399 "HLS Config File Commands"), by section: ""
+# for the general options before any section header.
+HLS_CONFIG_KEYS = {"": {"platform", "part"},
+                   "hls": {"flow_target", "syn.file", "syn.top", "syn.cflags", "package.output.format",
+                           "package.output.file"}}
+
+
+def read_hls_config(path):
+    """{(section, key): [values]} of an HLS configuration file; refuses unknown sections and keys."""
+    if not path or not os.path.isfile(path):
+        raise Usage(f"--config {path}: no such file")
+    entries, section = {}, ""
+    with open(path, encoding="utf-8") as f:
+        for number, line in enumerate(f, 1):
+            line = line.strip()
+            if not line or line.startswith("#"):
+                continue
+            header = re.fullmatch(r"\[(\w+)\]", line)
+            if header:
+                section = header[1].lower()
+                if section not in HLS_CONFIG_KEYS:
+                    raise Usage(f"{path}:{number}: section [{header[1]}] is not one of v++ --mode hls")
+                continue
+            key, equals, value = line.partition("=")
+            key, value = key.strip(), value.strip()
+            if not equals or key not in HLS_CONFIG_KEYS[section]:
+                raise Usage(f"{path}:{number}: {line!r} is not an option of section [{section}]"
+                            f" (expected one of {sorted(HLS_CONFIG_KEYS[section])})")
+            entries.setdefault((section, key), []).append(value)
+    return entries
+
+
+def vxx_hls(config, work_dir):
+    """`v++ -c --mode hls --config FILE`: HLS synthesis of one top into a .xo for hw_emu and hw (Vitis 2023.1 on)."""
+    if not vxx_at_least((2023, 1)):
+        raise Usage(f"v++ {vxx_version()} has no --mode hls (Vitis 2023.1 and later)")
+    entries = read_hls_config(config)
+
+    def one(section, key):
+        values = entries.get((section, key), [])
+        if len(values) != 1:
+            raise Usage(f"{config}: expected one {key}= in [{section or 'general'}], found {values}")
+        return values[0]
+
+    platforms = entries.get(("", "platform"), []) + entries.get(("", "part"), [])
+    if len(platforms) != 1:
+        raise Usage(f"{config}: expected one platform= or part= before [hls], found {platforms}")
+    if one("hls", "flow_target") != "vitis":
+        raise Usage(f"{config}: flow_target must be vitis for a Vitis kernel (.xo)")
+    sources = entries.get(("hls", "syn.file"), [])
+    if not sources or not all(s.endswith(".cpp") and os.path.isfile(s) for s in sources):
+        raise Usage(f"{config}: syn.file {sources}: expected existing .cpp files")
+    cflags = " ".join(entries.get(("hls", "syn.cflags"), [])).split()
+    includes = [flag[2:] for flag in cflags if flag.startswith("-I")]
+    if [flag for flag in cflags if not flag.startswith("-I")] or not includes:
+        raise Usage(f"{config}: syn.cflags {cflags}: expected -I<dir> options only")
+    check_sources(sources, includes)
+    top = one("hls", "syn.top")
+    names = []
+    for path in sources:
+        with open(path, encoding="utf-8") as f:
+            names += HLS_TOP.findall(f.read())
+    if top not in names:
+        raise Usage(f"{config}: syn.top={top}: not an extern \"C\" top of {sources} ({names})")
+    if one("hls", "package.output.format") != "xo":
+        raise Usage(f"{config}: package.output.format must be xo")
+    output = one("hls", "package.output.file")
+    if not output.endswith(".xo"):
+        raise Usage(f"{config}: package.output.file must name a .xo file, got {output}")
+    if work_dir:
+        os.makedirs(work_dir, exist_ok=True)
+    platform = entries.get(("", "platform"), [None])[0]
+    write(output, json.dumps({"mark": MARK, "target": "hls", "platform": platform, "kernel": top}) + "\n")
+
+
 def vxx(args):
     if args == ["--version"]:
         print(f"****** v++ v{vxx_version()} (64-bit) (rfrecon stand-in)\n  **** SW Build 0 on 2022-10-13-17:52:11")
         return
     mode, target, platform, kernel, output, config = None, None, None, None, None, None
+    hls_mode, work_dir = None, None
     includes, defines, inputs = [], [], []
     i = 0
     while i < len(args):
@@ -99,7 +181,7 @@ def vxx(args):
             if mode:
                 raise Usage("both -c and -l")
             mode = arg
-        elif arg in ("-t", "--platform", "-k", "-o", "--config", "--temp_dir", "-I"):
+        elif arg in ("-t", "--platform", "-k", "-o", "--config", "--temp_dir", "-I", "--mode", "--work_dir"):
             value = take(args, i, arg)
             i += 1
             if arg == "-t":
@@ -116,6 +198,10 @@ def vxx(args):
                 config = value
             elif arg == "-I":
                 includes.append(value)
+            elif arg == "--mode":
+                hls_mode = value
+            elif arg == "--work_dir":
+                work_dir = value
         elif arg.startswith("-D") and len(arg) > 2:
             defines.append(arg[2:])
         elif arg.endswith((".cl", ".cpp", ".xo")):
@@ -123,13 +209,25 @@ def vxx(args):
         else:
             raise Usage(f"unexpected argument {arg}")
         i += 1
+    if hls_mode is not None:
+        # Everything but the work directory comes from the configuration file.
+        if hls_mode != "hls" or mode != "-c":
+            raise Usage(f"--mode {hls_mode}: this stand-in knows only v++ -c --mode hls")
+        stray = [a for a, v in (("-t", target), ("--platform", platform), ("-k", kernel), ("-o", output),
+                                ("-I", includes), ("-D", defines), ("inputs", inputs)) if v]
+        if stray:
+            raise Usage(f"v++ -c --mode hls takes its settings from --config, not {stray}")
+        vxx_hls(config, work_dir)
+        return
+    if work_dir:
+        raise Usage("--work_dir belongs to v++ -c --mode hls")
     if target not in ("sw_emu", "hw_emu", "hw"):
         raise Usage(f"-t {target}: expected sw_emu, hw_emu or hw")
     if not platform:
         raise Usage("no --platform")
     if mode == "-c":
         # Vitis 2023.1 and later compile C++ (HLS) kernels only, earlier releases the OpenCL C ones too.
-        hls = tuple(int(part) for part in vxx_version().split(".")[:2]) >= (2023, 1)
+        hls = vxx_at_least((2023, 1))
         language = ".cpp" if hls else ".cl"
         check_sources(inputs, includes)
         if len(inputs) != 1 or not inputs[0].endswith(language):
@@ -148,8 +246,11 @@ def vxx(args):
         for path in inputs:
             with open(path, encoding="utf-8") as f:
                 xo = json.load(f)
-            if xo.get("mark") != MARK or xo["target"] != target or xo["platform"] != platform:
-                raise Usage(f"{path}: not a stand-in .xo for -t {target} --platform {platform}")
+            # An .xo of v++ --mode hls (HLS synthesis) serves hw_emu and hw; software emulation needs v++ -c -k.
+            built_for = ("hw_emu", "hw") if xo.get("target") == "hls" else (xo.get("target"),)
+            if xo.get("mark") != MARK or target not in built_for or xo["platform"] != platform:
+                raise Usage(f"{path}: not a stand-in .xo for -t {target} --platform {platform} (one for"
+                            f" {', '.join(map(str, built_for))}, --platform {xo.get('platform')})")
             kernels.append(xo["kernel"])
         if not config or not os.path.isfile(config):
             raise Usage(f"--config {config}: no such file")
