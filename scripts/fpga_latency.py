@@ -130,7 +130,7 @@ LOOP_NAMES = {
     "rf_store_row_group": ("z out",),
     "rf_integrate_rows_interleaved": ("slope",),
     "rf_fuse_rows_interleaved": ("forward", "backward"),
-    "rf_dual_pixels": ("entry or row",),
+    "rf_dual_entries": ("rows to 0", "entry"),
     "rf_axpy_elements": ("element",),
 }
 
@@ -144,7 +144,7 @@ TRIPS = {
     "fuse_rows_single": ("camera pixel", {
         "rows in": (1, "1"), "projector rows in": (1, "~1"), "forward": (3, "3 iterations"),
         "backward": (3, "3 iterations"), "z out": (1, "1")}),
-    "dual_single": ("entry of T or projector pixel", {"entry or row": (1, "1")}),
+    "dual_single": ("entry of T or projector pixel", {"rows to 0": (1, "1"), "entry": (1, "1")}),
     "axpy_single": ("element", {"element": (1, "1")}),
     "gray_pairs_single": ("camera pixel and batch of {pairs} Gray pairs", {}),
     "phase_steps_single": ("camera pixel and batch of {batch} phase steps", {}),

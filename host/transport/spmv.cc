@@ -93,6 +93,16 @@ TransposedTransport transpose(const CompressedTransport& transport) {
   return transposed;
 }
 
+std::vector<std::int32_t> entry_rows(const std::vector<std::int32_t>& row_start, std::size_t begin, std::size_t end) {
+  std::vector<std::int32_t> rows;
+  rows.reserve(static_cast<std::size_t>(row_start[end] - row_start[begin]));
+  for (std::size_t q = begin; q < end; ++q) {
+    rows.insert(rows.end(), static_cast<std::size_t>(row_start[q + 1] - row_start[q]),
+                static_cast<std::int32_t>(q - begin));
+  }
+  return rows;
+}
+
 std::vector<float> primal_reference(const CompressedTransport& transport, const std::vector<float>& light_p) {
   check_light(light_p.size(), transport.projector_pixels(), "primal");
   std::vector<float> image(transport.camera_pixels(), 0.0f);
@@ -129,9 +139,15 @@ std::vector<float> dual_opencl(cl::DeviceContext& device, cl::ProgramCache& prog
                                const std::string& build_options) {
   const std::size_t n = static_cast<std::size_t>(transposed.projector_size.area());
   if (transposed.row_start.size() != n + 1) throw std::invalid_argument("dual: malformed transposed transport");
-  return run_spmv(device, programs, entry, "dual", build_options, n, cl::upload(device.context(), transposed.row_start),
-                  cl::upload(device.context(), transposed.camera_pixel),
-                  cl::upload(device.context(), transposed.weights), cl::upload(device.context(), light_c));
+  const auto row_start = cl::upload(device.context(), transposed.row_start);
+  const auto camera_pixel = cl::upload(device.context(), transposed.camera_pixel);
+  const auto weights = cl::upload(device.context(), transposed.weights);
+  const auto light = cl::upload(device.context(), light_c);
+  if (entry == KernelEntry::kSingleWorkItem) {
+    const auto rows = cl::upload(device.context(), entry_rows(transposed.row_start, 0, n));
+    return run_spmv(device, programs, entry, "dual", build_options, n, row_start, rows, camera_pixel, weights, light);
+  }
+  return run_spmv(device, programs, entry, "dual", build_options, n, row_start, camera_pixel, weights, light);
 }
 
 }  // namespace rfrecon::transport

@@ -22,6 +22,10 @@ struct TransposedTransport {
 
 TransposedTransport transpose(const CompressedTransport& transport);
 
+// The row of each entry of rows [begin, end) (entries row_start[begin] to row_start[end] - 1), less begin: what the
+// single work-item dual streams instead of waiting on row_start (kernels/transport/sparse_products.h).
+std::vector<std::int32_t> entry_rows(const std::vector<std::int32_t>& row_start, std::size_t begin, std::size_t end);
+
 // C++ references: primal[c] = sum_k w[c,k] light_p[idx[c,k]]; dual[q] = sum_c T[c,q] light_c[c], summed in
 // ascending c (the order the kernel's CSR rows have). Throw std::invalid_argument on a light of the wrong size.
 std::vector<float> primal_reference(const CompressedTransport& transport, const std::vector<float>& light_p);

@@ -29,11 +29,13 @@ void tile_input(sched::Worker& worker, cl::GrowingBuffer& buffer, const T* data,
 
 // One device's kernel, the light vector (same for every tile) and two sets of tile buffers.
 struct DeviceState {
-  std::vector<std::int32_t> rebased[2];  // dual: host copy of the rebased row starts (outlives the buffers over it)
+  std::vector<std::int32_t> rebased[2];     // dual: host copy of the rebased row starts (outlives the buffers over it)
+  std::vector<std::int32_t> entry_rows[2];  // dual, single work-item entry: each entry's row in the tile
   ::cl::Kernel kernel;
   ::cl::Buffer light;
   cl::GrowingBuffer rows[2];     // primal: ELL indices; dual: rebased CSR row starts
   cl::GrowingBuffer columns[2];  // dual: camera pixels
+  cl::GrowingBuffer entry_row_buffers[2];
   cl::GrowingBuffer weights[2];
   cl::GrowingBuffer output[2];
 };
@@ -119,13 +121,22 @@ ProductRun dual_on_devices(std::vector<cl::DeviceContext>& devices, cl::ProgramC
                    transposed.row_start.begin() + static_cast<std::ptrdiff_t>(tile.end) + 1);
     for (auto& start : rebased) start -= first;
     tile_input(worker, state.rows[slot], rebased.data(), rebased.size());
+    if (worker.entry() == KernelEntry::kSingleWorkItem) {
+      state.entry_rows[slot] = entry_rows(transposed.row_start, tile.begin, tile.end);
+      tile_input(worker, state.entry_row_buffers[slot], state.entry_rows[slot].data(), nonzeros);
+    }
     tile_input(worker, state.columns[slot], transposed.camera_pixel.data() + first, nonzeros);
     tile_input(worker, state.weights[slot], transposed.weights.data() + first, nonzeros);
   };
   work.compute = [&](sched::Worker& worker, const sched::Tile& tile, int slot) {
     auto& state = states[worker.position()];
-    run_tile(worker, state, tile, slot, image, state.rows[slot].buffer(), state.columns[slot].buffer(),
-             state.weights[slot].buffer());
+    if (worker.entry() == KernelEntry::kSingleWorkItem) {
+      run_tile(worker, state, tile, slot, image, state.rows[slot].buffer(), state.entry_row_buffers[slot].buffer(),
+               state.columns[slot].buffer(), state.weights[slot].buffer());
+    } else {
+      run_tile(worker, state, tile, slot, image, state.rows[slot].buffer(), state.columns[slot].buffer(),
+               state.weights[slot].buffer());
+    }
   };
   return run_product(devices, pixels, entries, options, "dual", work, image);
 }

@@ -15,13 +15,14 @@ extern "C" void primal_single(const int* indices, const float* weights, const fl
   rf_primal_pixels(n, indices, weights, light, image);
 }
 
-extern "C" void dual_single(const int* row_start, const int* camera_pixel, const float* weights, const float* light,
-                            float* image, unsigned n) {
+extern "C" void dual_single(const int* row_start, const int* entry_row, const int* camera_pixel, const float* weights,
+                            const float* light, float* image, unsigned n) {
   RF_HLS_M_AXI(row_start, gmem0)
+  RF_HLS_M_AXI(entry_row, gmem5)
   RF_HLS_M_AXI(camera_pixel, gmem1)
   RF_HLS_M_AXI(weights, gmem2)
   RF_HLS_M_AXI(light, gmem3)
   RF_HLS_M_AXI(image, gmem4)
 #pragma HLS INTERFACE mode = s_axilite port = return
-  rf_dual_pixels(n, row_start, camera_pixel, weights, light, image);
+  rf_dual_entries(n, row_start, entry_row, camera_pixel, weights, light, image);
 }

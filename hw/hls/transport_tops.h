@@ -32,6 +32,6 @@ void finalize_single(const float* white, const float* black, int has_dots, int p
                      float* weights, float* energy, float* correspondence, unsigned n);
 
 void primal_single(const int* indices, const float* weights, const float* light, float* image, unsigned n);
-void dual_single(const int* row_start, const int* camera_pixel, const float* weights, const float* light, float* image,
-                 unsigned n);
+void dual_single(const int* row_start, const int* entry_row, const int* camera_pixel, const float* weights,
+                 const float* light, float* image, unsigned n);
 }

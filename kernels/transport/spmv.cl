@@ -30,8 +30,8 @@ __kernel void dual_ndrange(__global const int* restrict row_start, __global cons
 #endif
 
 RF_SINGLE_TASK
-__kernel void dual_single(__global const int* restrict row_start, __global const int* restrict camera_pixel,
-                          __global const float* restrict weights, __global const float* restrict light,
-                          __global float* restrict image, uint n) {
-  rf_dual_pixels(n, row_start, camera_pixel, weights, light, image);
+__kernel void dual_single(__global const int* restrict row_start, __global const int* restrict entry_row,
+                          __global const int* restrict camera_pixel, __global const float* restrict weights,
+                          __global const float* restrict light, __global float* restrict image, uint n) {
+  rf_dual_entries(n, row_start, entry_row, camera_pixel, weights, light, image);
 }

@@ -401,8 +401,9 @@ TEST(HlsCsim, SparseProductTopsMatchReference) {
   EXPECT_EQ(primal, primal_reference(transport, light_p));
   const auto transposed = transpose(transport);
   std::vector<float> dual(transport.projector_pixels());
-  dual_single(transposed.row_start.data(), transposed.camera_pixel.data(), transposed.weights.data(), light_c.data(),
-              dual.data(), static_cast<unsigned>(dual.size()));
+  const auto rows = entry_rows(transposed.row_start, 0, dual.size());
+  dual_single(transposed.row_start.data(), rows.data(), transposed.camera_pixel.data(), transposed.weights.data(),
+              light_c.data(), dual.data(), static_cast<unsigned>(dual.size()));
   EXPECT_EQ(dual, dual_reference(transport, light_c));
 }
 
