@@ -139,24 +139,19 @@ void record(const void* at, std::size_t size, bool write) {
   if (!region->bundle && region->element_bytes > size) {
     memory += "+" + std::to_string((address - region->begin) % region->element_bytes);
   }
-  MemoryUse& use = memory_use(loop, memory, *region);
-  if (region->bundle) use.claimed_distance = std::max(use.claimed_distance, loop.safelen);
-  if (!region->bundle) {
-    const auto claimed = loop.claimed.find(region->name);
-    use.claimed_distance =
-        std::max({use.claimed_distance, loop.safelen, claimed == loop.claimed.end() ? 0 : claimed->second});
+  // The distance the loop claims for this memory: safelen for every one, a dependence directive for its array.
+  int claimed = loop.safelen;
+  if (const auto directive = loop.claimed.find(region->name); !region->bundle && directive != loop.claimed.end()) {
+    claimed = std::max(claimed, directive->second);
   }
+  MemoryUse& use = memory_use(loop, memory, *region);
+  use.claimed_distance = std::max(use.claimed_distance, claimed);
   if (write) {
     loop.last_write[address] = loop.iteration;
   } else if (const auto written = loop.last_write.find(address); written != loop.last_write.end()) {
     const std::int64_t distance = loop.iteration - written->second;
     if (distance > 0) {
       if (use.shortest_distance == 0 || distance < use.shortest_distance) use.shortest_distance = distance;
-      const int claimed = std::max(
-          loop.safelen, region->bundle ? 0 : [&] {
-            const auto c = loop.claimed.find(region->name);
-            return c == loop.claimed.end() ? 0 : c->second;
-          }());
       if (distance < claimed) {
         violation(loop, memory + ": read at iteration " + std::to_string(loop.iteration) + " what iteration " +
                             std::to_string(written->second) + " wrote, " + std::to_string(distance) +
