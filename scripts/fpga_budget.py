@@ -373,9 +373,9 @@ def measured_mismatches(root, table_path):
             if expected.get((kernel, name, loop)) != measured.get((kernel, name, loop))]
 
 
-def main():
+def add_preset_arguments(parser):
+    """The options that choose the presets and tools, shared with scripts/fpga_latency.py."""
     here = os.path.dirname(os.path.abspath(__file__))
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--root", default=os.path.join(here, ".."))
     parser.add_argument("--boards", help="board preset directory (default ROOT/hw/boards)")
     parser.add_argument("--board", action="append", default=[], help="a preset (default: all of --boards)")
@@ -384,6 +384,25 @@ def main():
     parser.add_argument("--cmake", default=shutil.which("cmake"))
     parser.add_argument("--clang", default=shutil.which("clang") or shutil.which("clang-14"))
     parser.add_argument("--scratch", help="directory for the presets' parameters headers (default: a temporary one)")
+
+
+def resolve_preset_arguments(args, script):
+    """Absolute --root and --boards, and a temporary --scratch where none was given (returned, for the caller to
+    remove; else None). False, having said why, without clang or cmake."""
+    if not args.clang or not args.cmake:
+        print(f"{script}: needs clang and cmake (scripts/setup.sh installs them)", file=sys.stderr)
+        return False, None
+    args.root = os.path.abspath(args.root)
+    args.boards = os.path.abspath(args.boards or os.path.join(args.root, "hw", "boards"))
+    scratch = None
+    if not args.scratch:
+        scratch = args.scratch = tempfile.mkdtemp(prefix=f"rfrecon_{script.split('.')[0]}_")
+    return True, scratch
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    add_preset_arguments(parser)
     parser.add_argument("--verbose", action="store_true", help="also the arrays of unsupported presets")
     output = parser.add_mutually_exclusive_group()
     output.add_argument("--markdown", action="store_true", help="print docs/fpga.md's budget tables")
@@ -395,14 +414,9 @@ def main():
         mismatches = measured_mismatches(os.path.abspath(args.root), args.measured)
         print("\n".join(mismatches) or f"fpga_budget.py: PORTS holds the accesses of {args.measured}")
         return 1 if mismatches else 0
-    if not args.clang or not args.cmake:
-        print("fpga_budget.py: needs clang and cmake (scripts/setup.sh installs them)", file=sys.stderr)
+    ready, scratch = resolve_preset_arguments(args, "fpga_budget.py")
+    if not ready:
         return 2
-    args.root = os.path.abspath(args.root)
-    args.boards = os.path.abspath(args.boards or os.path.join(args.root, "hw", "boards"))
-    scratch = None
-    if not args.scratch:
-        scratch = args.scratch = tempfile.mkdtemp(prefix="rfrecon_budget_")
     try:
         presets = budgets(args)
         if args.markdown:

@@ -34,7 +34,6 @@ import os
 import re
 import shutil
 import sys
-import tempfile
 
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree for the modules below
 import docs_table  # noqa: E402
@@ -1043,16 +1042,8 @@ def check(vendor_models, claims_path, verbose):
 
 
 def main():
-    here = os.path.dirname(os.path.abspath(__file__))
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--root", default=os.path.join(here, ".."))
-    parser.add_argument("--boards", help="board preset directory (default ROOT/hw/boards)")
-    parser.add_argument("--board", action="append", default=[], help="a preset (default: all of --boards)")
-    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
-                        help="a parameter for every preset, as -DRFRECON_NAME=VALUE (what-if)")
-    parser.add_argument("--cmake", default=shutil.which("cmake"))
-    parser.add_argument("--clang", default=shutil.which("clang") or shutil.which("clang-14"))
-    parser.add_argument("--scratch", help="directory for the presets' parameters headers (default: a temporary one)")
+    fpga_budget.add_preset_arguments(parser)
     parser.add_argument("--claims", help="the Markdown file with the design II table (default ROOT/docs/fpga.md)")
     parser.add_argument("--verbose", action="store_true", help="every dependence of every loop, with its operators")
     output = parser.add_mutually_exclusive_group()
@@ -1060,15 +1051,10 @@ def main():
     output.add_argument("--docs", help="check that this Markdown file holds the generated tables")
     output.add_argument("--update-docs", help="write the generated tables into this Markdown file")
     args = parser.parse_args()
-    if not args.clang or not args.cmake:
-        print("fpga_latency.py: needs clang and cmake (scripts/setup.sh installs them)", file=sys.stderr)
+    ready, scratch = fpga_budget.resolve_preset_arguments(args, "fpga_latency.py")
+    if not ready:
         return 2
-    args.root = os.path.abspath(args.root)
-    args.boards = os.path.abspath(args.boards or os.path.join(args.root, "hw", "boards"))
     args.claims = args.claims or os.path.join(args.root, "docs", "fpga.md")
-    scratch = None
-    if not args.scratch:
-        scratch = args.scratch = tempfile.mkdtemp(prefix="rfrecon_latency_")
     try:
         vendor_models = models(args)
         if args.markdown:
