@@ -11,12 +11,41 @@ if(DEFINED RFRECON_ROW_INTERLEAVE)
                       "(cmake -U RFRECON_ROW_INTERLEAVE)")
 endif()
 
+# A board preset (hw/boards/<RFRECON_FPGA_BOARD>.cmake) sizes parameters for its board with RFRECON_PRESET_<NAME>: in a
+# build configured with that board, the host's and the flow's RFRECON_<NAME> default to it, and take it again whenever
+# the board changes; a -DRFRECON_<NAME>= given since overrides it (scripts/fpga_budget.py --set tells whether it fits).
+if(RFRECON_FPGA_BOARD AND EXISTS ${CMAKE_CURRENT_LIST_DIR}/../hw/boards/${RFRECON_FPGA_BOARD}.cmake)
+  include(${CMAKE_CURRENT_LIST_DIR}/../hw/boards/${RFRECON_FPGA_BOARD}.cmake)
+endif()
+if(DEFINED CACHE{RFRECON_KERNEL_PARAMS_BOARD} AND NOT "$CACHE{RFRECON_KERNEL_PARAMS_BOARD}" STREQUAL
+                                                      "${RFRECON_FPGA_BOARD}")
+  message(STATUS "Kernel parameters: the board changed to '${RFRECON_FPGA_BOARD}', its preset's values apply")
+  set(rfrecon_board_changed TRUE)
+else()
+  set(rfrecon_board_changed FALSE)
+endif()
+# rfrecon_param_cache(VAR DEFAULT HELP): the cache option VAR, the preset's value (VAR with PRESET_ after RFRECON_) in
+# place of DEFAULT where the preset has one, and forced when the board changed.
+macro(rfrecon_param_cache var default help)
+  string(REPLACE "RFRECON_" "RFRECON_PRESET_" rfrecon_preset_var ${var})
+  if(DEFINED ${rfrecon_preset_var})
+    set(rfrecon_param_default "${${rfrecon_preset_var}}")
+  else()
+    set(rfrecon_param_default "${default}")
+  endif()
+  if(rfrecon_board_changed)
+    set(${var} "${rfrecon_param_default}" CACHE STRING "${help}" FORCE)
+  else()
+    set(${var} "${rfrecon_param_default}" CACHE STRING "${help}")
+  endif()
+endmacro()
+
 # rfrecon_kernel_param(NAME DEFAULT MIN MAX OVERRIDABLE|FIXED HELP): the integer RF_NAME, set by the cache option
 # RFRECON_NAME in [MIN, MAX] (the host's bounds). OVERRIDABLE: a program built from source on a CPU or GPU may be
 # given another value with -DRF_NAME=; FIXED: the host's own code depends on it.
 set(rfrecon_kernel_param_names "")
 macro(rfrecon_kernel_param name default min max kind help)
-  set(RFRECON_${name} ${default} CACHE STRING "${help}")
+  rfrecon_param_cache(RFRECON_${name} ${default} "${help}")
   list(APPEND rfrecon_kernel_param_names ${name})
   set(rfrecon_kernel_param_${name}_range ${min} ${max})
   set(rfrecon_kernel_param_${name}_kind ${kind})
@@ -40,8 +69,10 @@ set(rfrecon_default_dot_spacings "")
 foreach(s RANGE 2 64)
   list(APPEND rfrecon_default_dot_spacings ${s})
 endforeach()
-set(RFRECON_DOT_SPACINGS "${rfrecon_default_dot_spacings}" CACHE STRING
-    "Dot-grid spacings s the kernels support, an ascending ;-list (default 2 to 64, what the host accepts)")
+rfrecon_param_cache(RFRECON_DOT_SPACINGS "${rfrecon_default_dot_spacings}"
+                    "Dot-grid spacings s the kernels support, an ascending ;-list (default 2 to 64, what the host \
+accepts)")
+set(RFRECON_KERNEL_PARAMS_BOARD "${RFRECON_FPGA_BOARD}" CACHE INTERNAL "the board whose preset the parameters follow")
 set(rfrecon_kernel_params_template ${CMAKE_CURRENT_LIST_DIR}/../kernels/common/params.h.in)
 
 function(rfrecon_configure_kernel_params out_dir)

@@ -5,7 +5,8 @@ For each board preset (hw/boards/<name>.cmake): its parameters header, written f
 cmake/EmbedKernelsParams.cmake as the hw/ flow writes it (scripts/fpga_budget_params.cmake); every kernels/**/*.cl
 compiled by clang to LLVM IR under the preset's target macro (scripts/fpga_kernel_ir.py); from the IR, each single
 work-item entry's on-chip arrays and each kernel's DSP-heavy operators. Each array is counted in the memory blocks
-the vendor tool binds it to (Intel M20K; AMD BRAM36, which HLS binds arrays to unless told URAM), times the copies
+the vendor tool binds it to (Intel M20K; AMD BRAM36, or URAM where kernels/depth/row_interleave.h says RF_IN_URAM in the
+kernel's function), times the copies
 that its reads and writes per loop iteration force at II 1 (PORTS below: a block has two ports, every copy takes
 every write), and the sum is checked against the board's blocks less its shell (scripts/fpga_devices.py); for AMD
 boards per SLR too, each kernel in the SLR of its memory bank (the preset's link configuration).
@@ -78,6 +79,9 @@ LOOPS = {("rf_integrate_rows_interleaved", 0): ("integrate_rows_single", "slope"
 
 VENDOR_MACRO = {"intel": "RF_TARGET_INTEL_FPGA", "xilinx": "RF_TARGET_XILINX_FPGA"}
 MEMORY_KIND = {"intel": "M20K", "xilinx": "BRAM36"}  # what the tool binds an array to unless told otherwise
+MEMORY_KINDS = {"intel": ["M20K"], "xilinx": ["BRAM36", "URAM"]}
+# The file that holds the depth kernels' on-chip arrays and its loops' functions (LOOPS).
+ROW_INTERLEAVE = os.path.join("kernels", "depth", "row_interleave.h")
 PARTITIONED = re.compile(r"(\w+)\s*\[[^\]]*\]\s*RF_PARTITION_COMPLETE")
 
 
@@ -101,8 +105,9 @@ def copies_for(reads, writes):
 class Array:
     """One on-chip array of a kernel with its copies and blocks of each kind."""
 
-    def __init__(self, kernel, name, words, width_bits, loops):
+    def __init__(self, kernel, name, words, width_bits, loops, uram=False):
         self.kernel, self.name, self.words, self.width_bits, self.loops = kernel, name, words, width_bits, loops
+        self.uram = uram  # RF_IN_URAM: bound to URAM on AMD boards
         modes = [copies_for(reads, writes) for _, reads, writes in loops]
         self.copies = max(m[0] for m in modes)
         self.true_dual_port = any(m[1] for m in modes)
@@ -110,56 +115,67 @@ class Array:
         self.blocks = {kind: self.copies * fpga_devices.blocks(words, width_bits, kind, self.true_dual_port)
                        for kind in ("M20K", "BRAM36", "URAM")}
 
+    def kind(self, vendor):
+        """The block kind the vendor's tool binds the array to."""
+        return "URAM" if self.uram and vendor == "xilinx" else MEMORY_KIND[vendor]
+
 
 class Preset:
     """One board preset's budget: parameters, device, arrays, operators, kernel placement, and what does not fit."""
 
-    def __init__(self, name, fields, params, device, kernels, registers):
+    def __init__(self, name, fields, params, device, kernels, registers, urams):
         self.name = name
         self.vendor = fields["VENDOR"]
         self.supported = fields["SUPPORTED"].upper() not in ("OFF", "NO", "FALSE", "0", "")
         self.params = params
         self.device = device
-        self.kind = MEMORY_KIND[self.vendor]
+        self.kinds = MEMORY_KINDS[self.vendor]
         binary = {k: v for k, v in kernels.items() if self.vendor == "intel" or k.endswith("_single")}
         self.operators = {k: v.operators for k, v in binary.items()}
         self.arrays = []
         for kernel in sorted(k for k in binary if k.endswith("_single")):
-            self.arrays += arrays_of(binary[kernel], registers)
-        self.slr_of = kernel_slrs(fields["LINK_CONFIG"], device) if self.vendor == "xilinx" else {}
+            self.arrays += arrays_of(binary[kernel], registers, urams.get(kernel, set()))
+        self.slr_of, self.placement = ({}, {}) if self.vendor != "xilinx" else kernel_slrs(fields["LINK_CONFIG"],
+                                                                                            device)
         self.overflows = self.check()
+
+    def bound(self, kind, slr=None):
+        """The arrays bound to blocks of `kind`, on the device or (AMD) in one SLR."""
+        return [a for a in self.arrays
+                if a.kind(self.vendor) == kind and (slr is None or self.slr_of.get(a.kernel, 0) == slr)]
 
     def used(self, kind, slr=None):
         """Blocks of `kind` the arrays take, on the device or (AMD) in one SLR."""
-        return sum(a.blocks[kind] for a in self.arrays if slr is None or self.slr_of.get(a.kernel, 0) == slr)
+        return sum(a.blocks[kind] for a in self.bound(kind, slr))
 
     def check(self):
-        """One message per budget exceeded: the device's, and for AMD each SLR's."""
+        """One message per budget exceeded: each block kind's on the device, and for AMD in each SLR."""
         overflows = []
         scopes = [None] + (list(range(self.device.slr_count)) if self.device.slr_count > 1 else [])
-        for slr in scopes:
-            needed, available = self.used(self.kind, slr), self.device.available(self.kind, slr)
-            if needed <= available:
-                continue
-            where = "the device" if slr is None else f"SLR{slr}"
-            total = self.device.totals[self.kind] // (1 if slr is None else self.device.slr_count)
-            lines = [f"{self.name} ({self.device.name}) does not fit: {self.kind} blocks of {where}: {needed:,} "
-                     f"needed, {available:,} available ({total:,} {self.device.shell_note(slr)})"]
-            if slr is None:
-                for a in sorted(self.arrays, key=lambda a: -a.blocks[self.kind]):
-                    lines.append(f"  {a.kernel} {a.name}: {a.blocks[self.kind]:,} {self.kind} ({a.copies} x "
-                                 f"{a.words:,} x {a.width_bits} bit)")
-            else:
-                kernels = sorted({a.kernel for a in self.arrays if self.slr_of.get(a.kernel, 0) == slr})
-                for kernel in kernels:
-                    count = sum(a.blocks[self.kind] for a in self.arrays if a.kernel == kernel)
-                    lines.append(f"  {kernel} (placed by its memory bank): {count:,} {self.kind}")
-            overflows.append("\n".join(lines))
+        for kind in self.kinds:
+            for slr in scopes:
+                needed, available = self.used(kind, slr), self.device.available(kind, slr)
+                if needed <= available:
+                    continue
+                where = "the device" if slr is None else f"SLR{slr}"
+                total = self.device.totals[kind] // (1 if slr is None else self.device.slr_count)
+                lines = [f"{self.name} ({self.device.name}) does not fit: {kind} blocks of {where}: {needed:,} "
+                         f"needed, {available:,} available ({total:,} {self.device.shell_note(slr)})"]
+                if slr is None:
+                    for a in sorted(self.bound(kind), key=lambda a: -a.blocks[kind]):
+                        lines.append(f"  {a.kernel} {a.name}: {a.blocks[kind]:,} {kind} ({a.copies} x "
+                                     f"{a.words:,} x {a.width_bits} bit)")
+                else:
+                    for kernel in sorted({a.kernel for a in self.bound(kind, slr)}):
+                        count = sum(a.blocks[kind] for a in self.bound(kind, slr) if a.kernel == kernel)
+                        lines.append(f"  {kernel} ({self.placement[kernel]}): {count:,} {kind}")
+                overflows.append("\n".join(lines))
         return overflows
 
 
-def arrays_of(kernel, registers):
-    """The on-chip arrays of one single work-item kernel, those named in `registers` left out."""
+def arrays_of(kernel, registers, urams):
+    """The on-chip arrays of one single work-item kernel, those named in `registers` left out, those in `urams` bound
+    to URAM on AMD boards."""
     ports = PORTS.get(kernel.name, {})
     arrays = []
     for name, words, width_bits in kernel.arrays:
@@ -168,12 +184,13 @@ def arrays_of(kernel, registers):
         if name not in ports:
             raise Problem(f"{kernel.name}: on-chip array {name} ({words} x {width_bits} bit) has no reads and writes "
                           f"per iteration in scripts/fpga_budget.py's PORTS")
-        arrays.append(Array(kernel.name, name, words, width_bits, ports[name]))
+        arrays.append(Array(kernel.name, name, words, width_bits, ports[name], name in urams))
     return arrays
 
 
 def kernel_slrs(link_config, device):
-    """{kernel: SLR} from a v++ link configuration: `slr=` where given, else the SLR of its first buffer's bank."""
+    """({kernel: SLR}, {kernel: how, in words}) from a v++ link configuration: `slr=` where given, else the SLR of its
+    first buffer's bank."""
     cu_kernel, slr_of = {}, {}
     try:
         with open(link_config, encoding="utf-8") as f:
@@ -188,11 +205,14 @@ def kernel_slrs(link_config, device):
         found = re.match(r"slr=(\w+):SLR(\d+)$", line)
         if found:
             slr_of[cu_kernel.get(found[1], found[1])] = int(found[2])
+    how = {kernel: "placed by slr= of the link configuration" for kernel in slr_of}
     for line in lines:
         found = re.match(r"sp=(\w+)\.\w+:(\S+)$", line)
-        if found:
-            slr_of.setdefault(cu_kernel.get(found[1], found[1]), device.bank_slr(found[2]))
-    return slr_of
+        if found and cu_kernel.get(found[1], found[1]) not in slr_of:
+            kernel = cu_kernel.get(found[1], found[1])
+            slr_of[kernel] = device.bank_slr(found[2])
+            how[kernel] = f"placed by its memory bank {found[2]}"
+    return slr_of, how
 
 
 def registers_in(kernel_dir):
@@ -204,6 +224,22 @@ def registers_in(kernel_dir):
                 with open(os.path.join(d, f), encoding="utf-8") as text:
                     names.update(PARTITIONED.findall(text.read()))
     return names
+
+
+def urams_in(root):
+    """{kernel: {array}} that the depth kernels bind to URAM: RF_IN_URAM(array) in the function of one of LOOPS."""
+    kernel_of = {function: kernel for (function, _), (kernel, _) in LOOPS.items()}
+    urams, function = {}, None
+    with open(os.path.join(root, ROW_INTERLEAVE), encoding="utf-8") as f:
+        for number, line in enumerate(f, 1):
+            found = re.match(r"RF_INLINE void (\w+)\(", line)
+            function = found[1] if found else function
+            for name in re.findall(r"\bRF_IN_URAM\((\w+)\)", line):
+                if function not in kernel_of:
+                    raise Problem(f"{ROW_INTERLEAVE}:{number}: RF_IN_URAM({name}) outside the functions of LOOPS "
+                                  f"({', '.join(sorted(kernel_of))})")
+                urams.setdefault(kernel_of[function], set()).add(name)
+    return urams
 
 
 def preset_params(args, board_file, out):
@@ -227,6 +263,7 @@ def budgets(args):
     """[Preset] of every preset chosen."""
     kernel_dir = os.path.join(args.root, "kernels")
     registers = registers_in(kernel_dir)
+    urams = urams_in(args.root)
     cl_files = sorted(os.path.join(d, f) for d, _, files in os.walk(kernel_dir) for f in files if f.endswith(".cl"))
     names = args.board or sorted(f[:-6] for f in os.listdir(args.boards) if f.endswith(".cmake"))
     compiled = {}  # (parameters header, vendor) -> {kernel: Kernel}
@@ -245,7 +282,7 @@ def budgets(args):
             for path in cl_files:
                 compiled[key].update(fpga_kernel_ir.compile_kernels(args.clang, path, includes,
                                                                     VENDOR_MACRO[fields["VENDOR"]]))
-        presets.append(Preset(name, fields, params, device, compiled[key], registers))
+        presets.append(Preset(name, fields, params, device, compiled[key], registers, urams))
     return presets
 
 
@@ -260,17 +297,15 @@ def markdown(presets):
     lines = ["| preset | device | blocks | needed / available | most used SLR | fits | status |",
              "| --- | --- | --- | --- | --- | --- | --- |"]
     for p in presets:
-        slr = "-"
-        if p.device.slr_count > 1:
-            s = max(range(p.device.slr_count), key=lambda s: p.used(p.kind, s) / p.device.available(p.kind, s))
-            slr = f"SLR{s}: {p.used(p.kind, s):,} / {p.device.available(p.kind, s):,}"
         status = "supported" if p.supported else "**unsupported**"
-        lines.append(f"| `{p.name}` | {p.device.name} | {p.kind} | {p.used(p.kind):,} / "
-                     f"{p.device.available(p.kind):,} | {slr} | {'yes' if not p.overflows else 'no'} | {status} |")
-    amd = [p for p in presets if p.vendor == "xilinx"]
-    if amd:
-        lines += ["", "Bound to URAM instead (not in the code): " + ", ".join(
-            f"`{p.name}` {p.used('URAM'):,} / {p.device.available('URAM'):,} URAM" for p in amd) + "."]
+        for kind in p.kinds:
+            slr = "-"
+            if p.device.slr_count > 1:
+                s = max(range(p.device.slr_count), key=lambda s: p.used(kind, s) / p.device.available(kind, s))
+                slr = f"SLR{s}: {p.used(kind, s):,} / {p.device.available(kind, s):,}"
+            fits = not any(f" {kind} blocks of " in o for o in p.overflows)
+            lines.append(f"| `{p.name}` | {p.device.name} | {kind} | {p.used(kind):,} / "
+                         f"{p.device.available(kind):,} | {slr} | {'yes' if fits else 'no'} | {status} |")
     groups = {}
     for p in presets:
         groups.setdefault(tuple(sorted(p.params.items())), []).append(p)
@@ -281,8 +316,8 @@ def markdown(presets):
                   f"R_int {p.params['RF_INTEGRATE_INTERLEAVE']}, R_fuse {p.params['RF_FUSE_INTERLEAVE']}, width "
                   f"{p.params['RF_MAX_ROW_WIDTH']}, K {p.params['RF_K']}, batch {p.params['RF_FRAME_BATCH']}, "
                   f"{len(spacings)} dot spacings.", "",
-                  "| kernel | array | words x bits | reads, writes per iteration | copies | M20K | BRAM36 | URAM |",
-                  "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+                  "| kernel | array | words x bits | reads, writes per iteration | copies | M20K | BRAM36 | URAM | "
+                  "AMD binds |", "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
         shown = {}
         for q in group:
             for a in q.arrays:
@@ -291,7 +326,8 @@ def markdown(presets):
             ports = "; ".join(f"{loop} {r}, {w}" for loop, r, w in a.loops)
             copies = f"{a.copies}{' (double-pumped)' if a.double_pumped else ''}"
             lines.append(f"| `{a.kernel}` | `{a.name}` | {a.words:,} x {a.width_bits} | {ports} | {copies} | "
-                         f"{a.blocks['M20K']:,} | {a.blocks['BRAM36']:,} | {a.blocks['URAM']:,} |")
+                         f"{a.blocks['M20K']:,} | {a.blocks['BRAM36']:,} | {a.blocks['URAM']:,} | "
+                         f"{a.kind('xilinx')} |")
     operators = [op for op in fpga_kernel_ir.OPERATORS
                  if any(counter.get(op, 0) for p in presets for counter in p.operators.values())]
     rows = {}
@@ -317,7 +353,8 @@ def report(presets, verbose, what_if):
     for p in presets:
         if what_if:
             p.supported = True
-        summary = (f"{p.name}: {p.device.name}: {p.kind} {p.used(p.kind):,} / {p.device.available(p.kind):,}; "
+        blocks = ", ".join(f"{kind} {p.used(kind):,} / {p.device.available(kind):,}" for kind in p.kinds)
+        summary = (f"{p.name}: {p.device.name}: {blocks}; "
                    f"DSP-heavy operators {operator_text(p.operators)}")
         if p.supported and p.overflows:
             problems += 1

@@ -883,13 +883,16 @@ def chain_text(model):
     return f"`{chain.carrier.split('.')[0]}` ({what}): {model.summary(chain)}"
 
 
-def by_target(vendor_models):
-    """{target: VendorModel} of the models' targets."""
-    result = {}
-    for vm in vendor_models:
-        for target in VENDOR_TARGETS[vm.vendor]:
-            result[target] = vm
-    return result
+def columns_of(vendor_models, targets):
+    """[(target, VendorModel, title)] of the targets named, one per model of the target's vendor; the title names the
+    presets where a vendor's presets have more than one parameters header."""
+    titles = {"intel": "Intel", "amd": "AMD", "amd_opencl": "AMD OpenCL C"}
+    columns = []
+    for t in targets:
+        models = [vm for vm in vendor_models if t in VENDOR_TARGETS[vm.vendor]]
+        for vm in models:
+            columns.append((t, vm, titles[t] if len(models) == 1 else f"{titles[t]} {', '.join(vm.presets)}"))
+    return columns
 
 
 def latency_table(targets):
@@ -911,23 +914,22 @@ def latency_table(targets):
 
 def markdown(vendor_models):
     """The generated tables of docs/fpga.md's pipelines section: latencies, loops, kernels, and the OpenCL C path."""
-    models_of = by_target(vendor_models)
-    shown = [t for t in TABLE_TARGETS if t in models_of]
-    titles = {"intel": "Intel", "amd": "AMD"}
-    lines = latency_table(shown) + [""]
-    for t in shown:
-        p = models_of[t].params
-        lines.append(f"{TARGETS[t].title}: presets {', '.join(f'`{n}`' for n in models_of[t].presets)}, R_int "
+    columns = columns_of(vendor_models, TABLE_TARGETS)
+    lines = latency_table(list(dict.fromkeys(t for t, _, _ in columns))) + [""]
+    for t, vm, _ in columns:
+        p = vm.params
+        lines.append(f"{TARGETS[t].title}: presets {', '.join(f'`{n}`' for n in vm.presets)}, R_int "
                      f"{p['RF_INTEGRATE_INTERLEAVE']}, R_fuse {p['RF_FUSE_INTERLEAVE']}.")
+    titles = [title for _, _, title in columns]
     lines += ["", "| kernel | loop | longest carried dependence: operators on its path | " +
-              " | ".join(f"{titles[t]}: L / R, II" for t in shown) + " | iterations per unit | clocks per unit, " +
-              " / ".join(titles[t] for t in shown) + " |", "| --- | --- | --- |" + " --- |" * (len(shown) + 2)]
-    keys = loop_order({k for t in shown for k in models_of[t].loops})
+              " | ".join(f"{title}: L / R, II" for title in titles) + " | iterations per unit | clocks per unit, " +
+              " / ".join(titles) + " |", "| --- | --- | --- |" + " --- |" * (len(columns) + 2)]
+    keys = loop_order({k for _, vm, _ in columns for k in vm.loops})
     totals = collections.OrderedDict()
     for key in keys:
         texts, cells, clocks = [], [], []
-        for t in shown:
-            kl = models_of[t].loops.get(key)
+        for column, (t, vm, title) in enumerate(columns):
+            kl = vm.loops.get(key)
             if kl is None:
                 cells.append("-")
                 continue
@@ -935,26 +937,26 @@ def markdown(vendor_models):
             chain = model.worst
             text = chain_text(model)
             if text not in [x for _, x in texts]:
-                texts.append((titles[t], text))
+                texts.append((title.split()[0], text))
             latency, distance = (chain.latency, chain.distance) if chain else (0, 1)
             cells.append(f"{latency} / {distance}, **{model.ii}**" if model.ii > 1 else
                          f"{latency} / {distance}, {model.ii}")
-            unit, iterations, how = trips(key[0], key[1], models_of[t].params)
+            unit, iterations, how = trips(key[0], key[1], vm.params)
             clocks.append(str(iterations * model.ii))
             total = totals.setdefault(key[0], [unit, {}])
-            total[1][t] = total[1].get(t, 0) + iterations * model.ii
+            total[1][column] = total[1].get(column, 0) + iterations * model.ii
         chains = texts[0][1] if len(texts) == 1 else "; ".join(f"{v}: {x}" for v, x in texts)
         lines.append(f"| `{key[0]}` | {key[1]} | {chains} | " + " | ".join(cells) + f" | {how} | "
                      + " / ".join(clocks) + " |")
-    lines += ["", "| kernel | unit | clocks per unit, " + " / ".join(titles[t] for t in shown) + " | units per second, "
-              + " / ".join(f"{titles[t]} at {CLOCK_MHZ[TARGETS[t].vendor]} MHz" for t in shown) + " |",
+    lines += ["", "| kernel | unit | clocks per unit, " + " / ".join(titles) + " | units per second, "
+              + " / ".join(f"{title} at {CLOCK_MHZ[TARGETS[t].vendor]} MHz" for t, _, title in columns) + " |",
               "| --- | --- | --- | --- |"]
     for kernel, (unit, clocks) in totals.items():
-        rates = [f"{CLOCK_MHZ[TARGETS[t].vendor] / clocks[t]:.3g} M" for t in shown if t in clocks]
-        lines.append(f"| `{kernel}` | {unit} | " + " / ".join(str(clocks[t]) for t in shown if t in clocks) +
-                     " | " + " / ".join(rates) + " |")
-    vm = models_of.get("amd_opencl")
-    if vm is not None:
+        rates = [f"{CLOCK_MHZ[TARGETS[t].vendor] / clocks[c]:.3g} M" for c, (t, _, _) in enumerate(columns)
+                 if c in clocks]
+        counts = [str(clocks[c]) for c in range(len(columns)) if c in clocks]
+        lines.append(f"| `{kernel}` | {unit} | " + " / ".join(counts) + " | " + " / ".join(rates) + " |")
+    for _, vm, title in columns_of(vendor_models, ("amd_opencl",)):
         slow = [(key, vm.loops[key].models["amd_opencl"]) for key in loop_order(vm.loops)]
         text = ", ".join(f"`{k[0]}` {k[1]} II {m.ii}" for k, m in slow if m.ii > 1) or "none"
         lines += ["", f"{TARGETS['amd_opencl'].title}: no dependence attribute, so every distance is 1 (and arrays "
@@ -965,7 +967,8 @@ def markdown(vendor_models):
 def claims_of(path):
     """[(kernel, loop, {"intel" | "amd" | "all": II})] of the design II table in the pipelines section of a Markdown
     file: `| kernel | loop | design II | ... |`, kernels in backquotes and loops separated by commas (a row holds each
-    pair of them), the design II a number or "Intel n, AMD m"."""
+    pair of them), the design II a number or "Intel n, AMD m", where a preset in backquotes may have its own
+    ("Intel 2 (`pac_a10` 3), AMD 1"); the keys are "all", "intel", "amd" and preset names."""
     with open(path, encoding="utf-8") as f:
         text = f.read()
     start = text.find(SECTION)
@@ -985,7 +988,8 @@ def claims_of(path):
             raise Problem(f"{path}: design II table row {line!r}: fewer than 3 cells")
         design = cells[2]
         values = {"all": int(design)} if re.fullmatch(r"\d+", design) else {
-            vendor.lower(): int(value) for vendor, value in re.findall(r"(Intel|AMD)\D*?(\d+)", design)}
+            name.strip("`").lower(): int(value)
+            for name, value in re.findall(r"(Intel|AMD|`\w+`)[^\d`]*?(\d+)", design)}
         if not values:
             raise Problem(f"{path}: design II {design!r}: expected a number or 'Intel n, AMD m'")
         for kernel in re.findall(r"`(\w+)`", cells[0]):
@@ -1027,7 +1031,8 @@ def check(vendor_models, claims_path, verbose):
                     print(f"  problem: {claims_path} states no design II for {key[0]} {key[1]} (its table "
                           f"`| kernel | loop | design II |`)")
                     continue
-                limit = design.get(TARGETS[target].vendor, design.get("all"))
+                own = [design[p.lower()] for p in vm.presets if p.lower() in design]
+                limit = min(own) if own else design.get(TARGETS[target].vendor, design.get("all"))
                 if limit is not None and model.ii > limit:
                     problems += 1
                     print(f"  problem: {target} {key[0]} {key[1]}: the model's II {model.ii} exceeds the design II "

@@ -131,15 +131,35 @@ class BudgetTest(unittest.TestCase):
         self.assertIn("fuse_rows_single e_proj_rows: 4,096 M20K (1 x 2,097,152 x 32 bit)", run.stdout)
 
     def test_oversized_amd_preset_fails_per_slr(self):
-        # Declared supported (hw/boards/u250.cmake is not), with rows that fit the device but not the depth stage's SLR.
-        smaller = ("set(RFRECON_FPGA_SUPPORTED ON)\nset(RFRECON_MAX_ROW_WIDTH 1024)\n"
-                   "set(RFRECON_INTEGRATE_INTERLEAVE 64)\n")
-        boards = self.boards({"big": ("u250", smaller)})
+        # The u250 preset with rows of 4096 pixels: the device has the blocks, the integration's SLR (slr=) not.
+        boards = self.boards({"big": ("u250", "set(RFRECON_MAX_ROW_WIDTH 4096)\n")})
         run = self.budget("--boards", boards)
         self.assertEqual(run.returncode, 1, run.stdout + run.stderr)
-        self.assertNotIn("BRAM36 blocks of the device", run.stdout)  # the device has room, SLR3 alone not
+        self.assertNotIn("blocks of the device", run.stdout)
+        self.assertIn("URAM blocks of SLR3: 480 needed, 288 available (320 less 10% for infrastructure)", run.stdout)
+        self.assertIn("integrate_rows_single (placed by slr= of the link configuration): 480 URAM", run.stdout)
         self.assertIn("BRAM36 blocks of SLR3:", run.stdout)
-        self.assertIn("integrate_rows_single (placed by its memory bank):", run.stdout)
+
+    def test_amd_kernels_without_slr_lie_in_their_banks_slr(self):
+        # Without the link configuration's slr= lines both depth kernels lie in SLR3, beside DDR[3]: too many for it.
+        boards = self.boards({"packed": ("u250", "")})
+        config = os.path.join(boards, "u250.cfg")
+        with open(config, encoding="utf-8") as f:
+            lines = [line for line in f if not line.startswith("slr=")]
+        with open(config, "w", encoding="utf-8") as f:
+            f.writelines(lines)
+        run = self.budget("--boards", boards, "--board", "packed")
+        self.assertEqual(run.returncode, 1, run.stdout + run.stderr)
+        self.assertIn("URAM blocks of SLR3: 400 needed", run.stdout)
+        self.assertIn("fuse_rows_single (placed by its memory bank DDR[3]): 160 URAM", run.stdout)
+
+    def test_amd_binds_the_marked_arrays_to_uram(self):
+        # RF_IN_URAM in a kernel's function binds that kernel's array: the integration's e_cam_rows, not the fusion's.
+        run = self.budget("--board", "u250", "--set", "MAX_ROW_WIDTH=16384")
+        self.assertEqual(run.returncode, 1, run.stdout + run.stderr)
+        self.assertIn("integrate_rows_single e_cam_rows: 640 URAM (1 x 2,621,440 x 32 bit)", run.stdout)
+        self.assertIn("fuse_rows_single e_cam_rows: 640 BRAM36 (1 x 655,360 x 32 bit)", run.stdout)
+        self.assertIn("integrate_rows_single z_rows: 2,560 BRAM36", run.stdout)
 
     def test_unsupported_preset_that_fits_fails(self):
         boards = self.boards({"stale": ("520n", "set(RFRECON_FPGA_SUPPORTED OFF)\n")})
@@ -148,7 +168,8 @@ class BudgetTest(unittest.TestCase):
         self.assertIn("stale fits its board, but hw/boards/stale.cmake declares it unsupported", run.stdout)
 
     def test_unsupported_preset_that_does_not_fit_passes(self):
-        boards = self.boards({"small": ("pac_a10", "set(RFRECON_FPGA_SUPPORTED OFF)\n")})
+        wide = "set(RFRECON_FPGA_SUPPORTED OFF)\nset(RFRECON_MAX_ROW_WIDTH 4096)\n"
+        boards = self.boards({"small": ("pac_a10", wide)})
         run = self.budget("--boards", boards)
         self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
         self.assertIn("small: Arria 10 GX 1150: M20K", run.stdout)

@@ -145,11 +145,13 @@ class ClaimsTest(unittest.TestCase):
         with open(path, "w", encoding="utf-8") as f:
             f.write("## Pipelines of the single work-item entries\n\n| kernel | loop | design II | why |\n"
                     "| --- | --- | --- | --- |\n| `a_single`, `b_single` | x, y | 1 | . |\n"
-                    "| `c_single` | z | Intel 2, AMD 1 | . |\n\n## Next\n")
+                    "| `c_single` | z | Intel 2, AMD 1 | . |\n| `d_single` | w | Intel 2 (`pac_a10` 3), AMD 1 | . |\n"
+                    "\n## Next\n")
         claims = fpga_latency.claims_of(path)
-        self.assertEqual(len(claims), 5)
+        self.assertEqual(len(claims), 6)
         self.assertIn(("b_single", "y", {"all": 1}), claims)
         self.assertIn(("c_single", "z", {"intel": 2, "amd": 1}), claims)
+        self.assertIn(("d_single", "w", {"intel": 2, "pac_a10": 3, "amd": 1}), claims)
 
 
 class KernelsTest(unittest.TestCase):
@@ -190,6 +192,15 @@ class KernelsTest(unittest.TestCase):
         self.assertEqual(run.returncode, 1, run.stdout + run.stderr)
         self.assertIn("dual_single entry: the model's II 4 exceeds the design II 1", run.stdout)
         self.assertIn("`sum` (register): add/mul", run.stdout)
+
+    def test_preset_beyond_its_vendors_design_ii_fails(self):
+        # pac_a10's interleaves are shorter than the Stratix 10 presets': without its own design II, its vendor's fails.
+        claims = self.docs_copy(lambda text: text.replace(" (`pac_a10` 3)", ""))
+        run = self.latency("--claims", claims, boards=("pac_a10",))
+        self.assertEqual(run.returncode, 1, run.stdout + run.stderr)
+        self.assertIn("problem: intel integrate_rows_single slope: the model's II 3 exceeds the design II 2",
+                      run.stdout)
+        self.assertEqual(self.latency(boards=("pac_a10",)).returncode, 0)
 
     def test_loop_without_design_ii_fails(self):
         claims = self.docs_copy(lambda text: re.sub(r"\n\| `axpy_single` \| element \|[^\n]*", "", text))

@@ -2,5 +2,9 @@
 set(RFRECON_FPGA_VENDOR intel)
 set(RFRECON_FPGA_DEVICE_DEFAULT pac_a10)
 set(RFRECON_FPGA_DESCRIPTION "Intel PAC, Arria 10 GX 1150")
-# Unsupported: the kernels do not fit this board at the default parameters (scripts/fpga_budget.py, docs/fpga.md).
-set(RFRECON_FPGA_SUPPORTED OFF)
+# Parameters sized by the budget (scripts/fpga_budget.py, docs/fpga.md#resource-budget): rows of 2048 pixels, a 1080p
+# projector's and a 2 MP camera's, with interleaves of about a third of the Stratix 10 estimates of the loops'
+# latencies (R_int 66, R_fuse 18): II 3 by those estimates (scripts/fpga_latency.py), less at an Arria 10's clock.
+set(RFRECON_PRESET_MAX_ROW_WIDTH 2048)
+set(RFRECON_PRESET_INTEGRATE_INTERLEAVE 66)
+set(RFRECON_PRESET_FUSE_INTERLEAVE 18)

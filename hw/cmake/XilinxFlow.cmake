@@ -23,6 +23,10 @@ set(fpga_tool_name v++)
 if(fpga_tool_version VERSION_LESS 2023.1)
   set(fpga_macro RF_TARGET_XILINX_FPGA)
   set(fpga_kernel_kind "OpenCL C kernels")
+  message(WARNING "v++ ${fpga_tool_version} compiles the OpenCL C kernels, which bind no array to URAM (RF_IN_URAM): "
+                  "the depth kernels' rows then need more block RAM than ${RFRECON_FPGA_BOARD}'s SLRs have, by the "
+                  "budget (scripts/fpga_budget.py, docs/fpga.md#resource-budget). Vitis 2023.1 or later compiles "
+                  "the HLS C++ tops, which do.")
   set(vxx_source_flags -D${fpga_macro})
 else()
   set(fpga_macro RF_TARGET_HLS)  # defined by each top itself

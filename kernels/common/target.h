@@ -24,6 +24,9 @@
 //                         (`#pragma HLS DEPENDENCE`; Intel's counterpart is RF_IVDEP_SAFELEN before the loop).
 //   RF_ON_CHIP_RAM(a)     after a local array's declaration: a is an on-chip RAM (two ports), empty on every target.
 //   RF_ON_CHIP_BANKS(a, n) the same for n RAMs, a's n equal blocks (`#pragma HLS ARRAY_PARTITION ... type=block`).
+//   RF_IN_URAM(a)         after a's RF_ON_CHIP_RAM or RF_ON_CHIP_BANKS: bind a to UltraRAM (`#pragma HLS BIND_STORAGE
+//                         ... impl=uram`), for a read-only row array of the pipelined loops (ports: one read, one
+//                         read or write). scripts/fpga_budget.py counts a in URAM on AMD boards, in M20K on Intel's.
 // The C simulation's access check (RF_CSIM_CHECK, common/csim_hooks.h) makes RF_HLS_PIPELINE, RF_HLS_DEPENDENCE,
 // RF_IVDEP_SAFELEN and RF_ON_CHIP_RAM calls that count each RAM's and AXI bundle's accesses per iteration and check
 // every claimed dependence distance (docs/fpga.md#access-and-dependence-check).
@@ -68,16 +71,19 @@
 #define RF_HLS_DEPENDENCE(var, d) RF_CSIM_DEPENDENCE(var, d)
 #define RF_ON_CHIP_RAM(var) RF_CSIM_RAM(var, 1)
 #define RF_ON_CHIP_BANKS(var, n) RF_CSIM_RAM(var, n)
+#define RF_IN_URAM(var)
 #elif defined(RF_TARGET_HLS)
 #define RF_HLS_PIPELINE_II(n) RF_PRAGMA_(HLS PIPELINE II=n)
 #define RF_HLS_DEPENDENCE(var, d) RF_PRAGMA_(HLS DEPENDENCE variable=var inter RAW distance=d true)
 #define RF_ON_CHIP_RAM(var)
 #define RF_ON_CHIP_BANKS(var, n) RF_PRAGMA_(HLS ARRAY_PARTITION variable=var type=block factor=n)
+#define RF_IN_URAM(var) RF_PRAGMA_(HLS BIND_STORAGE variable=var type=ram_2p impl=uram)
 #else
 #define RF_HLS_PIPELINE_II(n)
 #define RF_HLS_DEPENDENCE(var, d)
 #define RF_ON_CHIP_RAM(var)
 #define RF_ON_CHIP_BANKS(var, n)
+#define RF_IN_URAM(var)
 #endif
 #define RF_HLS_PIPELINE RF_HLS_PIPELINE_II(1)
 // clang-format on

@@ -9,6 +9,9 @@
 // at its entry; no loop depends on the data, none divides by a run-time value, none reads and writes global memory.
 //
 // Rows up to RF_MAX_ROW_WIDTH pixels, camera and projector; R and the width come from common/params.h.
+// On AMD boards the largest read-only rows (the integration's e_cam, e_proj and z_tri, the fusion's copies of e_proj)
+// are bound to UltraRAM and the rest to block RAM (RF_IN_URAM), so that each depth kernel fits one SLR of a U250 or a
+// U280 at the widths of their presets (scripts/fpga_budget.py, docs/fpga.md#resource-budget).
 #ifndef RFRECON_KERNELS_DEPTH_ROW_INTERLEAVE_H
 #define RFRECON_KERNELS_DEPTH_ROW_INTERLEAVE_H
 
@@ -73,8 +76,11 @@ RF_INLINE void rf_integrate_rows_interleaved(RfRectifiedRig rig, int first_row, 
   float z_rows[RF_INTEGRATE_BUFFER];
   unsigned char run_rows[RF_INTEGRATE_BUFFER];
   RF_ON_CHIP_RAM(e_cam_rows)
+  RF_IN_URAM(e_cam_rows)
   RF_ON_CHIP_RAM(e_proj_rows)
+  RF_IN_URAM(e_proj_rows)
   RF_ON_CHIP_RAM(z_tri_rows)
+  RF_IN_URAM(z_tri_rows)
   RF_ON_CHIP_RAM(z_rows)
   RF_ON_CHIP_RAM(run_rows)
   for (int r0 = 0; r0 < rows; r0 += RF_INTEGRATE_INTERLEAVE) {
@@ -156,6 +162,7 @@ RF_INLINE void rf_fuse_rows_interleaved(RfRectifiedRig rig, int first_row, int r
   unsigned char run_rows[RF_FUSE_BUFFER];
   RF_ON_CHIP_RAM(e_cam_rows)
   RF_ON_CHIP_BANKS(e_proj_rows, RF_FUSE_SLOPES)
+  RF_IN_URAM(e_proj_rows)
   RF_ON_CHIP_RAM(z_tri_rows)
   RF_ON_CHIP_RAM(z_rows)
   RF_ON_CHIP_RAM(c_rows)

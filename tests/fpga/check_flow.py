@@ -38,10 +38,22 @@ def expect(condition, message):
         raise Failure(message)
 
 
-# The parameters header's defaults (cmake/EmbedKernelsParams.cmake), as the manifest must record them.
-PARAMETERS = {"RF_K": 8, "RF_INTEGRATE_INTERLEAVE": 160, "RF_FUSE_INTERLEAVE": 32, "RF_MAX_ROW_WIDTH": 4096,
-              "RF_FRAME_BATCH": 16, "RF_DOT_SPACINGS": list(range(2, 65))}
+# The parameters header's defaults (cmake/EmbedKernelsParams.cmake); a preset's set(RFRECON_PRESET_<NAME> value)
+# replaces one (preset_parameters).
+DEFAULTS = {"RF_K": 8, "RF_INTEGRATE_INTERLEAVE": 160, "RF_FUSE_INTERLEAVE": 32, "RF_MAX_ROW_WIDTH": 4096,
+            "RF_FRAME_BATCH": 16, "RF_DOT_SPACINGS": list(range(2, 65))}
 PARAMS_H = os.path.join("common", "params.h")
+
+
+def preset_parameters(root, board):
+    """The parameters a board's flow, and its manifests, must hold: the defaults, with the preset's own values."""
+    with open(os.path.join(root, "hw", "boards", board + ".cmake"), encoding="utf-8") as f:
+        found = re.findall(r"^set\(RFRECON_PRESET_(\w+) ([\d ;]+)\)$", f.read(), re.M)
+    parameters = dict(DEFAULTS)
+    for name, value in found:
+        values = [int(v) for v in re.split(r"[ ;]+", value.strip())]
+        parameters["RF_" + name] = values if isinstance(DEFAULTS["RF_" + name], list) else values[0]
+    return parameters
 
 
 def file_digest(path):
@@ -96,13 +108,13 @@ def logged(log):
     return lines
 
 
-def check_manifest(binary, target, tool, macro, device, board, kernels, source_hash):
+def check_manifest(binary, target, tool, macro, device, board, kernels, source_hash, parameters):
     expect(os.path.isfile(binary), f"{binary} not built")
     with open(binary + ".json", encoding="utf-8") as f:
         manifest = json.load(f)
     wanted = {"binary": os.path.basename(binary), "board": board, "device": device, "target": target, "tool": tool,
               "target_macro": macro, "stand_in": True, "source_sha256": source_hash,
-              "parameters": PARAMETERS, "extra_flags": []}
+              "parameters": parameters, "extra_flags": []}
     wanted["binary_sha256"] = file_digest(binary)
     for key, value in wanted.items():
         expect(manifest.get(key) == value, f"{binary}.json: {key} is {manifest.get(key)!r}, expected {value!r}")
@@ -110,13 +122,13 @@ def check_manifest(binary, target, tool, macro, device, board, kernels, source_h
     expect(re.fullmatch(r"\d+\.\d+(\.\d+)?", manifest["tool_version"]), f"tool_version {manifest['tool_version']}")
 
 
-def emulator_private_mb(root):
+def emulator_private_mb(root, parameters):
     """CL_CONFIG_CPU_FORCE_PRIVATE_MEM_SIZE in MB: twice the larger of the depth kernels' private rows, which
     kernels/depth/row_buffers.h gives as RF_INTEGRATE_PRIVATE_BYTES and RF_FUSE_PRIVATE_BYTES (evaluated here with the
-    default parameters, a 4-byte float and the header's numeric macros), rounded up to whole MB."""
+    preset's parameters, a 4-byte float and the header's numeric macros), rounded up to whole MB."""
     with open(os.path.join(root, "kernels", "depth", "row_buffers.h"), encoding="utf-8") as f:
         text = f.read().replace("\\\n", " ")
-    numbers = dict(PARAMETERS, **{m[1]: int(m[2]) for m in re.finditer(r"^#define (\w+) (\d+)$", text, re.M)})
+    numbers = dict(parameters, **{m[1]: int(m[2]) for m in re.finditer(r"^#define (\w+) (\d+)$", text, re.M)})
     largest = 0
     for kernel in ("INTEGRATE", "FUSE"):
         found = re.search(rf"^#define RF_{kernel}_PRIVATE_BYTES (.*)$", text, re.M)
@@ -151,13 +163,24 @@ def read_hls_config(path):
     return entries
 
 
-def check_params_header(generated_dir):
-    """The generated header defines each parameter with its default (the dot spacings as an initializer list)."""
+def check_params_header(generated_dir, parameters):
+    """The generated header defines each parameter with its value (the dot spacings as an initializer list)."""
     with open(os.path.join(generated_dir, PARAMS_H), encoding="utf-8") as f:
         text = f.read()
-    for name, value in PARAMETERS.items():
+    for name, value in parameters.items():
         wanted = "{" + ", ".join(map(str, value)) + "}" if isinstance(value, list) else str(value)
         expect(re.search(rf"^#define {name} {re.escape(wanted)}$", text, re.M), f"{PARAMS_H}: {name} is not {wanted}")
+
+
+def check_host_follows_preset(args, build, env):
+    """The host's parameters (cmake/EmbedKernelsParams.cmake, as the whole project includes it) follow the board
+    preset that its build is configured with, so that the host accepts the board's binary."""
+    script = os.path.join(build, "host_params.cmake")
+    with open(script, "w", encoding="utf-8") as f:
+        f.write(f"include({args.root}/cmake/EmbedKernelsParams.cmake)\n"
+                f"rfrecon_configure_kernel_params({build}/host_params)\n")
+    run([args.cmake, f"-DRFRECON_FPGA_BOARD={args.board}", "-P", script], env)
+    check_params_header(os.path.join(build, "host_params", "kernels"), args.parameters)
 
 
 def includes_of(line):
@@ -184,10 +207,11 @@ def check_intel(args, build, env, files, source_hash):
         expect(not [a for a in line if a.startswith("-DRF_K") or a.startswith("-DRF_ROW")],
                f"{target}: parameters given as -D options, which would bypass the header: {line}")
         check_manifest(os.path.join(build, binary), target, "aoc", "RF_TARGET_INTEL_FPGA", device, args.board,
-                       every_kernel, source_hash)
+                       every_kernel, source_hash, args.parameters)
     check_emulation_env(build, {"RFRECON_KERNEL_BINARY": os.path.join(build, f"rfrecon_{args.board}_emulator.aocx"),
                                 "CL_CONTEXT_EMULATOR_DEVICE_INTELFPGA": "1",
-                                "CL_CONFIG_CPU_FORCE_PRIVATE_MEM_SIZE": f"{emulator_private_mb(args.root)}MB"})
+                                "CL_CONFIG_CPU_FORCE_PRIVATE_MEM_SIZE":
+                                    f"{emulator_private_mb(args.root, args.parameters)}MB"})
 
 
 def check_link_config(path, single):
@@ -319,7 +343,7 @@ def check_xilinx(args, build, env, files, source_hash, mode="opencl"):
         emconfig = [c for c in calls if c[0] == "emconfigutil"]
         expect(len(emconfig) == (1 if target == "sw_emu" else 0), f"{target}: emconfigutil {emconfig}")
         check_manifest(os.path.join(build, binary), target, "v++", macro, device, args.board, list(single),
-                       source_hash)
+                       source_hash, args.parameters)
     run([args.cmake, "--build", build, "--target", "rfrecon_fpga_report"], env)
     expect(logged(env["RFRECON_STANDIN_LOG"]) == [], "report: the hw .xo files are those of rfrecon_fpga_hw")
     check_emulation_env(build, {"RFRECON_KERNEL_BINARY": os.path.join(build, f"rfrecon_{args.board}_sw_emu.xclbin"),
@@ -336,6 +360,7 @@ def main():
     parser.add_argument("--cmake", default="cmake")
     args = parser.parse_args()
     args.root = os.path.abspath(args.root)
+    args.parameters = preset_parameters(args.root, args.board)
     build = os.path.abspath(args.scratch)
     shutil.rmtree(build, ignore_errors=True)
     os.makedirs(build)
@@ -348,10 +373,15 @@ def main():
         configured = run(configure + ["-B", os.path.join(build, "flow")], env)
         expect("RFRECON_DOT_SPACINGS holds 63 spacings" in " ".join(configured.stderr.split()),
                "no warning about the 63 default dot spacings' dividers")
-        few = run(configure + ["-B", os.path.join(build, "few_spacings"), "-DRFRECON_DOT_SPACINGS=4;8"], env)
+        # Values given on the command line win over the preset's.
+        few = run(configure + ["-B", os.path.join(build, "few_spacings"), "-DRFRECON_DOT_SPACINGS=4;8",
+                               "-DRFRECON_MAX_ROW_WIDTH=1000"], env)
         expect("RFRECON_DOT_SPACINGS" not in few.stderr, f"a warning about 2 dot spacings:\n{few.stderr}")
+        check_params_header(os.path.join(build, "few_spacings", "generated", "kernels"),
+                            dict(args.parameters, RF_DOT_SPACINGS=[4, 8], RF_MAX_ROW_WIDTH=1000))
+        check_host_follows_preset(args, build, env)
         generated_dir = os.path.join(build, "flow", "generated", "kernels")
-        check_params_header(generated_dir)
+        check_params_header(generated_dir, args.parameters)
         files, digests = kernels_of(os.path.join(args.root, "kernels"), generated_dir)
         run([args.cmake, "--build", os.path.join(build, "flow")], env)
         expect(logged(env["RFRECON_STANDIN_LOG"]) == [], "`all` ran a vendor tool: synthesis must never be in all")
