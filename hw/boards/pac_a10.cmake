@@ -8,3 +8,5 @@ set(RFRECON_FPGA_DESCRIPTION "Intel PAC, Arria 10 GX 1150")
 set(RFRECON_PRESET_MAX_ROW_WIDTH 2048)
 set(RFRECON_PRESET_INTEGRATE_INTERLEAVE 66)
 set(RFRECON_PRESET_FUSE_INTERLEAVE 18)
+# Dot spacings: the capture's default 8, 4 (16 frames) and 16 (isolated dots): each is two dividers in the compression.
+set(RFRECON_PRESET_DOT_SPACINGS 4 8 16)

@@ -8,3 +8,5 @@ set(RFRECON_FPGA_LINK_CONFIG ${CMAKE_CURRENT_LIST_DIR}/u250.cfg)
 # fusion's forward-sweep latency at 300 MHz, for II 1 (scripts/fpga_latency.py).
 set(RFRECON_PRESET_MAX_ROW_WIDTH 2048)
 set(RFRECON_PRESET_FUSE_INTERLEAVE 40)
+# Dot spacings: the capture's default 8, 4 (16 frames) and 16 (isolated dots): each is two dividers in the compression.
+set(RFRECON_PRESET_DOT_SPACINGS 4 8 16)

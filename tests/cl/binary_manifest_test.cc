@@ -27,18 +27,27 @@ using ::testing::HasSubstr;
 struct StandInFlow {
   std::string board, tools, environment, target, binary;
 };
+// The configure options that give a flow this host's parameters in place of its preset's (hw/boards/: dot spacings,
+// and rows and interleaves on some boards), as for a host configured without the board.
+std::string host_parameter_options() {
+  std::string spacings;
+  for (const int s : std::vector<int> RF_DOT_SPACINGS) spacings += (spacings.empty() ? "" : ";") + std::to_string(s);
+  return " -DRFRECON_MAX_ROW_WIDTH=" + std::to_string(RF_MAX_ROW_WIDTH) +
+         " -DRFRECON_INTEGRATE_INTERLEAVE=" + std::to_string(RF_INTEGRATE_INTERLEAVE) +
+         " -DRFRECON_FUSE_INTERLEAVE=" + std::to_string(RF_FUSE_INTERLEAVE) + " \"-DRFRECON_DOT_SPACINGS=" + spacings +
+         "\"";
+}
 StandInFlow intel_emulator() {
-  return {"520n", "-DRFRECON_AOC=\"" + std::string(RFRECON_SOURCE_DIR) + "/tests/fpga/bin/aoc\"", "",
+  return {"520n",
+          "-DRFRECON_AOC=\"" + std::string(RFRECON_SOURCE_DIR) + "/tests/fpga/bin/aoc\"" + host_parameter_options(), "",
           "rfrecon_fpga_emulator", "rfrecon_520n_emulator.aocx"};
 }
-// The u250 flow of the HLS C++ tops, as Vitis 2023.1 and later build them (v++ -c -k), with this host's parameters in
-// place of the preset's (rows of 2048, R_fuse 40), as a host configured without the board has them.
+// The u250 flow of the HLS C++ tops, as Vitis 2023.1 and later build them (v++ -c -k).
 StandInFlow u250_hls_sw_emu() {
   const std::string bin = std::string(RFRECON_SOURCE_DIR) + "/tests/fpga/bin";
   return {"u250",
           "-DRFRECON_VXX=\"" + bin + "/v++\" -DRFRECON_EMCONFIGUTIL=\"" + bin + "/emconfigutil\"" +
-              " -DRFRECON_MAX_ROW_WIDTH=" + std::to_string(RF_MAX_ROW_WIDTH) +
-              " -DRFRECON_FUSE_INTERLEAVE=" + std::to_string(RF_FUSE_INTERLEAVE),
+              host_parameter_options(),
           "RFRECON_STANDIN_VERSION=2023.1 ", "rfrecon_fpga_sw_emu", "rfrecon_u250_sw_emu.xclbin"};
 }
 // The same flow's hardware emulation binary as Vitis 2025.1 builds it: each top by v++ -c --mode hls.

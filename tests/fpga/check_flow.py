@@ -371,14 +371,16 @@ def main():
     configure = [args.cmake, "-S", os.path.join(args.root, "hw"), f"-DRFRECON_FPGA_BOARD={args.board}"] + tools
     try:
         configured = run(configure + ["-B", os.path.join(build, "flow")], env)
-        expect("RFRECON_DOT_SPACINGS holds 63 spacings" in " ".join(configured.stderr.split()),
-               "no warning about the 63 default dot spacings' dividers")
-        # Values given on the command line win over the preset's.
-        few = run(configure + ["-B", os.path.join(build, "few_spacings"), "-DRFRECON_DOT_SPACINGS=4;8",
-                               "-DRFRECON_MAX_ROW_WIDTH=1000"], env)
-        expect("RFRECON_DOT_SPACINGS" not in few.stderr, f"a warning about 2 dot spacings:\n{few.stderr}")
-        check_params_header(os.path.join(build, "few_spacings", "generated", "kernels"),
-                            dict(args.parameters, RF_DOT_SPACINGS=[4, 8], RF_MAX_ROW_WIDTH=1000))
+        expect("RFRECON_DOT_SPACINGS" not in configured.stderr,
+               f"a warning about the preset's {len(args.parameters['RF_DOT_SPACINGS'])} dot spacings:\n"
+               f"{configured.stderr}")
+        # Values given on the command line win over the preset's; more than 4 spacings are warned about.
+        many = run(configure + ["-B", os.path.join(build, "many_spacings"), "-DRFRECON_DOT_SPACINGS=2;3;4;5;6",
+                                "-DRFRECON_MAX_ROW_WIDTH=1000"], env)
+        expect("RFRECON_DOT_SPACINGS holds 5 spacings" in " ".join(many.stderr.split()),
+               "no warning about 5 dot spacings' dividers")
+        check_params_header(os.path.join(build, "many_spacings", "generated", "kernels"),
+                            dict(args.parameters, RF_DOT_SPACINGS=[2, 3, 4, 5, 6], RF_MAX_ROW_WIDTH=1000))
         check_host_follows_preset(args, build, env)
         generated_dir = os.path.join(build, "flow", "generated", "kernels")
         check_params_header(generated_dir, args.parameters)
