@@ -24,6 +24,10 @@
 //                         (`#pragma HLS DEPENDENCE`; Intel's counterpart is RF_IVDEP_SAFELEN before the loop).
 //   RF_ON_CHIP_RAM(a)     after a local array's declaration: a is an on-chip RAM (two ports), empty on every target.
 //   RF_ON_CHIP_BANKS(a, n) the same for n RAMs, a's n equal blocks (`#pragma HLS ARRAY_PARTITION ... type=block`).
+//   RF_HLS_STATIC         before a local array of rows: `static`, so that Vitis' software emulation (sw_emu) and the C
+//                         simulation, which run the tops on a thread, keep megabytes of rows off its stack; the tool
+//                         builds the same on-chip RAM. A body holding one is not reentrant: one call at a time, as a
+//                         compute unit runs them. Empty on the OpenCL targets, whose functions have no static locals.
 //   RF_IN_URAM(a)         after a's RF_ON_CHIP_RAM or RF_ON_CHIP_BANKS: bind a to UltraRAM (`#pragma HLS BIND_STORAGE
 //                         ... impl=uram`), for a read-only row array of the pipelined loops (ports: one read, one
 //                         read or write). scripts/fpga_budget.py counts a in URAM on AMD boards, in M20K on Intel's.
@@ -72,18 +76,21 @@
 #define RF_ON_CHIP_RAM(var) RF_CSIM_RAM(var, 1)
 #define RF_ON_CHIP_BANKS(var, n) RF_CSIM_RAM(var, n)
 #define RF_IN_URAM(var)
+#define RF_HLS_STATIC static
 #elif defined(RF_TARGET_HLS)
 #define RF_HLS_PIPELINE_II(n) RF_PRAGMA_(HLS PIPELINE II=n)
 #define RF_HLS_DEPENDENCE(var, d) RF_PRAGMA_(HLS DEPENDENCE variable=var inter RAW distance=d true)
 #define RF_ON_CHIP_RAM(var)
 #define RF_ON_CHIP_BANKS(var, n) RF_PRAGMA_(HLS ARRAY_PARTITION variable=var type=block factor=n)
 #define RF_IN_URAM(var) RF_PRAGMA_(HLS BIND_STORAGE variable=var type=ram_2p impl=uram)
+#define RF_HLS_STATIC static
 #else
 #define RF_HLS_PIPELINE_II(n)
 #define RF_HLS_DEPENDENCE(var, d)
 #define RF_ON_CHIP_RAM(var)
 #define RF_ON_CHIP_BANKS(var, n)
 #define RF_IN_URAM(var)
+#define RF_HLS_STATIC
 #endif
 #define RF_HLS_PIPELINE RF_HLS_PIPELINE_II(1)
 // clang-format on

@@ -72,9 +72,10 @@ RF_INLINE void rf_integrate_rows_interleaved(RfRectifiedRig rig, int first_row, 
                                              int passes, RF_GLOBAL const float* e_cam, RF_GLOBAL const float* e_proj,
                                              RF_GLOBAL const float* z_tri, RF_GLOBAL const unsigned char* runs,
                                              RF_GLOBAL float* z) {
-  float e_cam_rows[RF_INTEGRATE_BUFFER], e_proj_rows[RF_INTEGRATE_BUFFER], z_tri_rows[RF_INTEGRATE_BUFFER];
-  float z_rows[RF_INTEGRATE_BUFFER];
-  unsigned char run_rows[RF_INTEGRATE_BUFFER];
+  RF_HLS_STATIC float e_cam_rows[RF_INTEGRATE_BUFFER], e_proj_rows[RF_INTEGRATE_BUFFER],
+      z_tri_rows[RF_INTEGRATE_BUFFER];
+  RF_HLS_STATIC float z_rows[RF_INTEGRATE_BUFFER];
+  RF_HLS_STATIC unsigned char run_rows[RF_INTEGRATE_BUFFER];
   RF_ON_CHIP_RAM(e_cam_rows)
   RF_IN_URAM(e_cam_rows)
   RF_ON_CHIP_RAM(e_proj_rows)
@@ -157,9 +158,10 @@ RF_INLINE void rf_fuse_rows_interleaved(RfRectifiedRig rig, int first_row, int r
                                         RF_GLOBAL float* z) {
   // e_proj_rows holds one copy of the rows per slope of the forward sweep's two RK4 increments: each slope's two
   // gathers take the two ports of its own copy.
-  float e_cam_rows[RF_FUSE_BUFFER], e_proj_rows[RF_FUSE_SLOPES * RF_FUSE_BUFFER], z_tri_rows[RF_FUSE_BUFFER];
-  float z_rows[RF_FUSE_BUFFER], c_rows[RF_FUSE_BUFFER], d_rows[RF_FUSE_BUFFER];
-  unsigned char run_rows[RF_FUSE_BUFFER];
+  RF_HLS_STATIC float e_cam_rows[RF_FUSE_BUFFER], e_proj_rows[RF_FUSE_SLOPES * RF_FUSE_BUFFER],
+      z_tri_rows[RF_FUSE_BUFFER];
+  RF_HLS_STATIC float z_rows[RF_FUSE_BUFFER], c_rows[RF_FUSE_BUFFER], d_rows[RF_FUSE_BUFFER];
+  RF_HLS_STATIC unsigned char run_rows[RF_FUSE_BUFFER];
   RF_ON_CHIP_RAM(e_cam_rows)
   RF_ON_CHIP_BANKS(e_proj_rows, RF_FUSE_SLOPES)
   RF_IN_URAM(e_proj_rows)
