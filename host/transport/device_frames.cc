@@ -18,7 +18,8 @@ DeviceFrames::DeviceFrames(const TransportSetup& setup, cl::DeviceContext& devic
       work_group_(cl::private_work_group(device.info(), private_bytes)) {
   if (slots > kSlots) throw std::invalid_argument("DeviceFrames: more slots than RF_FRAME_BATCH");
   if (entry_ == KernelEntry::kSingleWorkItem) {
-    batch_ = cl::make_buffer<float>(device.context(), slots * n_);
+    pixel_major_.create(static_cast<int>(n_), static_cast<int>(kSlots), CV_32F);
+    batch_ = cl::make_buffer<float>(device.context(), kSlots * n_);
     white_ = cl::make_buffer<float>(device.context(), n_);
     black_ = cl::make_buffer<float>(device.context(), n_);
   }
@@ -27,16 +28,16 @@ DeviceFrames::DeviceFrames(const TransportSetup& setup, cl::DeviceContext& devic
 void DeviceFrames::add(std::size_t slot, const cv::Mat& frame) {
   if (entry_ == KernelEntry::kNdRange) {
     lent_[slot] = {frame, borrow(frame, setup_.frame_depth)};
-  } else if (setup_.frame_depth == CV_32F) {
-    upload(batch_, frame, slot * n_);
   } else {
     check_frame(frame, setup_.frame_depth);
-    upload(batch_, capture::linearize_samples(frame, setup_.samples), slot * n_);
+    const cv::Mat linear = setup_.frame_depth == CV_32F ? frame : capture::linearize_samples(frame, setup_.samples);
+    linear.reshape(1, static_cast<int>(n_)).copyTo(pixel_major_.col(static_cast<int>(slot)));
   }
 }
 
 cl_uint DeviceFrames::set_arguments(::cl::Kernel& kernel, std::size_t count) {
   if (entry_ == KernelEntry::kSingleWorkItem) {
+    cl::write_buffer(device_.queue(), batch_, pixel_major_.ptr<float>(), kSlots * n_, true);
     cl::set_args(kernel, batch_);
     return 1;
   }
@@ -80,6 +81,7 @@ void DeviceFrames::set_white_black(const cv::Mat& white, const cv::Mat& black) {
 
 void DeviceFrames::release() {
   white_ = black_ = batch_ = ::cl::Buffer();
+  pixel_major_.release();
   white_frame_.release();  // after the buffers over it
   black_frame_.release();
 }

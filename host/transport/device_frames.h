@@ -1,5 +1,6 @@
 // Frames handed to a transport kernel on one OpenCL device, a batch of up to RF_FRAME_BATCH per launch: the single
-// work-item entries take a batch's frames linear in one buffer (frame `slot` at slot * n), the NDRange entries read
+// work-item entries take a batch's frames linear in one buffer, pixel-major (kernels/common/frame_samples.h: pixel c's
+// samples side by side, so that a board reads them in one wide word), the NDRange entries read
 // each frame where it lies (cl::borrow, no copy on runtimes that run kernels on host memory) as RF_FRAME_BATCH buffer
 // arguments, raw samples made linear in the kernel (kernels/common/frame_batch.h). Also white and black, which the
 // finalizing kernels read: copied (single work-item) or lent until release().
@@ -33,8 +34,8 @@ class DeviceFrames {
 
   // Frame `slot` of the batch, of setup.frame_depth.
   void add(std::size_t slot, const cv::Mat& frame);
-  // Sets kernel's first arguments to the batch's frames: the batch buffer, or the `count` lent frames then frame 0
-  // again in the unused slots and the samples' linear map. Returns the index of the next argument.
+  // Sets kernel's first arguments to the batch's frames: the batch buffer (uploaded here), or the `count` lent frames
+  // then frame 0 again in the unused slots and the samples' linear map. Returns the index of the next argument.
   cl_uint set_arguments(::cl::Kernel& kernel, std::size_t count);
   // Runs kernel over the batch's pixels and waits; then releases the lent frames, each buffer before its frame.
   void run_batch(const ::cl::Kernel& kernel);
@@ -69,6 +70,7 @@ class DeviceFrames {
   // NDRange entries: the memory that white_ and black_ lend to the kernels (declared before them: outlives them).
   cv::Mat white_frame_, black_frame_;
   ::cl::Buffer batch_, white_, black_;
+  cv::Mat pixel_major_;  // single work-item entries: the batch as batch_ takes it, n rows of kSlots samples
   // A frame lent to the NDRange entries: the frame and a buffer over its memory (destroyed first).
   struct LentFrame {
     cv::Mat frame;

@@ -6,7 +6,7 @@
 #include "hls/transport_tops.h"
 #include "transport/compression.h"
 
-extern "C" void dot_frames_single(const float* frames, int frame_count, const int* offsets, int spacing,
+extern "C" void dot_frames_single(const RfFrameSamples* frames, int frame_count, const int* offsets, int spacing,
                                   int projector_width, int projector_height, float noise_threshold, const float* black,
                                   const unsigned char* flags, const unsigned* projector_x, const unsigned* projector_y,
                                   int* indices, float* weights, float* energy, unsigned n) {

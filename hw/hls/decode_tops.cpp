@@ -6,8 +6,9 @@
 #include "hls/transport_tops.h"
 #include "transport/gray_decode.h"
 
-extern "C" void gray_pairs_single(const float* frames, int pair_count, const unsigned* pairs, float white_threshold,
-                                  unsigned* code_x, unsigned* code_y, unsigned char* flags, unsigned n) {
+extern "C" void gray_pairs_single(const RfFrameSamples* frames, int pair_count, const unsigned* pairs,
+                                  float white_threshold, unsigned* code_x, unsigned* code_y, unsigned char* flags,
+                                  unsigned n) {
   RF_HLS_M_AXI(frames, gmem0)
   RF_HLS_M_AXI(pairs, gmem1)
   RF_HLS_M_AXI(code_x, gmem2)

@@ -7,8 +7,8 @@
 #include "hls/transport_tops.h"
 #include "transport/phase_decode.h"
 
-extern "C" void phase_steps_single(const float* frames, int axis, int step_count, const float* shifts, float* sums,
-                                   unsigned n) {
+extern "C" void phase_steps_single(const RfFrameSamples* frames, int axis, int step_count, const float* shifts,
+                                   float* sums, unsigned n) {
   RF_HLS_M_AXI(frames, gmem0)
   RF_HLS_M_AXI(shifts, gmem1)
   RF_HLS_M_AXI(sums, gmem2)

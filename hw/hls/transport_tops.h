@@ -5,14 +5,17 @@
 // RF_GRAY_PAIR_BATCH Gray pairs). Declared here for their C simulation (tests/fpga/hls_csim_test.cc).
 #pragma once
 
+#include "common/frame_samples.h"
+
 extern "C" {
 
-void gray_pairs_single(const float* frames, int pair_count, const unsigned* pairs, float white_threshold,
+void gray_pairs_single(const RfFrameSamples* frames, int pair_count, const unsigned* pairs, float white_threshold,
                        unsigned* code_x, unsigned* code_y, unsigned char* flags, unsigned n);
 void gray_finalize_single(const float* white, const float* black, float black_threshold, int projector_width,
                           int projector_height, unsigned* code_x, unsigned* code_y, unsigned char* flags, unsigned n);
 
-void phase_steps_single(const float* frames, int axis, int step_count, const float* shifts, float* sums, unsigned n);
+void phase_steps_single(const RfFrameSamples* frames, int axis, int step_count, const float* shifts, float* sums,
+                        unsigned n);
 void phase_fold_single(int axis, float period, int coarsest, float middle, int steps, float white_threshold,
                        float* sums, float* estimates, unsigned char* flags, unsigned n);
 void phase_beat_single(int axis, int level, int f0, int f1, int f2, float axis_pixels, int steps, float white_threshold,
@@ -23,10 +26,10 @@ void phase_finalize_single(const float* white, const float* black, float black_t
                            const float* sums, const float* estimates, unsigned char* flags, int* indices,
                            float* weights, float* energy, float* correspondence, unsigned n);
 
-void dot_frames_single(const float* frames, int frame_count, const int* offsets, int spacing, int projector_width,
-                       int projector_height, float noise_threshold, const float* black, const unsigned char* flags,
-                       const unsigned* projector_x, const unsigned* projector_y, int* indices, float* weights,
-                       float* energy, unsigned n);
+void dot_frames_single(const RfFrameSamples* frames, int frame_count, const int* offsets, int spacing,
+                       int projector_width, int projector_height, float noise_threshold, const float* black,
+                       const unsigned char* flags, const unsigned* projector_x, const unsigned* projector_y,
+                       int* indices, float* weights, float* energy, unsigned n);
 void finalize_single(const float* white, const float* black, int has_dots, int projector_width, float noise_threshold,
                      unsigned char* flags, const unsigned* projector_x, const unsigned* projector_y, int* indices,
                      float* weights, float* energy, float* correspondence, unsigned n);

@@ -22,7 +22,8 @@ class Iteration {
 class Memory {
  public:
   Memory(const void* at, std::size_t bytes, std::size_t element_bytes, int banks, const char* name);  // on-chip
-  Memory(const void* at, const char* argument, const char* bundle);  // an AXI argument, up to the next one's start
+  // An AXI argument, up to the next one's start, of words of element_bytes (its pointee: a wide struct is one word).
+  Memory(const void* at, std::size_t element_bytes, const char* argument, const char* bundle);
   ~Memory();
   Memory(const Memory&) = delete;
   Memory& operator=(const Memory&) = delete;
@@ -46,6 +47,6 @@ void safelen(int distance);
 #define RF_CSIM_RAM(var, banks) \
   rf_csim::Memory RF_CSIM_JOIN(rf_csim_ram_, var)(var, sizeof(var), sizeof(var[0]), banks, #var);
 #define RF_CSIM_PORT(argument, bundle_name) \
-  rf_csim::Memory RF_CSIM_JOIN(rf_csim_port_, argument)(argument, #argument, #bundle_name);
+  rf_csim::Memory RF_CSIM_JOIN(rf_csim_port_, argument)(argument, sizeof(*argument), #argument, #bundle_name);
 
 #endif  // RFRECON_KERNELS_COMMON_CSIM_HOOKS_H

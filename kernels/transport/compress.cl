@@ -48,7 +48,7 @@ __kernel void dot_frames_ndrange(RF_FRAME_PARAMETERS, float sample_black, float 
 #endif
 
 RF_SINGLE_TASK
-__kernel void dot_frames_single(__global const float* restrict frames, int frame_count,
+__kernel void dot_frames_single(__global const RfFrameSamples* restrict frames, int frame_count,
                                 __global const int* restrict offsets, int spacing, int projector_width,
                                 int projector_height, float noise_threshold, __global const float* restrict black,
                                 __global const uchar* restrict flags, __global const uint* restrict projector_x,

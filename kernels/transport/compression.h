@@ -18,6 +18,7 @@
 #ifndef RFRECON_KERNELS_TRANSPORT_COMPRESSION_H
 #define RFRECON_KERNELS_TRANSPORT_COMPRESSION_H
 
+#include "common/frame_samples.h"
 #include "common/lanes.h"
 #include "common/params.h"
 #include "common/portable.h"
@@ -147,15 +148,16 @@ RF_INLINE void rf_dot_samples_pixel(unsigned c, const float* sample, int frame_c
   if (reached) rf_dot_update_row(c, value, dot, indices, weights, energy);
 }
 
-// The same with the batch in one array (frame f at f * n).
-RF_INLINE void rf_dot_frames_pixel(unsigned c, unsigned n, int frame_count, const int* offsets_x, const int* offsets_y,
-                                   RfDotGrid grid, RF_GLOBAL const float* frames, RF_GLOBAL const float* black,
+// The same with the batch pixel-major (common/frame_samples.h).
+RF_INLINE void rf_dot_frames_pixel(unsigned c, int frame_count, const int* offsets_x, const int* offsets_y,
+                                   RfDotGrid grid, RF_GLOBAL const RfFrameSamples* frames, RF_GLOBAL const float* black,
                                    RF_GLOBAL const unsigned char* flags, RF_GLOBAL const unsigned* projector_x,
                                    RF_GLOBAL const unsigned* projector_y, RF_GLOBAL int* indices,
                                    RF_GLOBAL float* weights, RF_GLOBAL float* energy) {
+  const RfFrameSamples batch = frames[c];
   float sample[RF_FRAME_BATCH] RF_PARTITION_COMPLETE;
   RF_UNROLL
-  for (int f = 0; f < RF_FRAME_BATCH; ++f) sample[f] = f < frame_count ? frames[(size_t)f * n + c] : 0.0f;
+  for (int f = 0; f < RF_FRAME_BATCH; ++f) sample[f] = f < frame_count ? batch.sample[f] : 0.0f;
   rf_dot_samples_pixel(c, sample, frame_count, offsets_x, offsets_y, grid, black, flags, projector_x, projector_y,
                        indices, weights, energy);
 }
@@ -297,7 +299,7 @@ RF_INLINE void rf_load_dot_offsets(RF_GLOBAL const int* offsets, int* offsets_x,
 
 // The single work-item loop over the n pixels: the batch's offsets copied on chip first.
 RF_INLINE void rf_dot_frames_pixels(unsigned n, int frame_count, RF_GLOBAL const int* offsets, RfDotGrid grid,
-                                    RF_GLOBAL const float* frames, RF_GLOBAL const float* black,
+                                    RF_GLOBAL const RfFrameSamples* frames, RF_GLOBAL const float* black,
                                     RF_GLOBAL const unsigned char* flags, RF_GLOBAL const unsigned* projector_x,
                                     RF_GLOBAL const unsigned* projector_y, RF_GLOBAL int* indices,
                                     RF_GLOBAL float* weights, RF_GLOBAL float* energy) {
@@ -306,8 +308,8 @@ RF_INLINE void rf_dot_frames_pixels(unsigned n, int frame_count, RF_GLOBAL const
   rf_load_dot_offsets(offsets, offsets_x, offsets_y);
   RF_PIPELINE_II(1)
   for (unsigned c = 0; c < n; ++c) {
-    RF_HLS_PIPELINE_II(RF_FRAME_BATCH)  // a beat per frame sample, and per ELL entry (RF_K <= RF_FRAME_BATCH)
-    rf_dot_frames_pixel(c, n, frame_count, offsets_x, offsets_y, grid, frames, black, flags, projector_x, projector_y,
+    RF_HLS_PIPELINE_II(RF_K)  // one AXI beat per ELL entry (the frame samples: one beat)
+    rf_dot_frames_pixel(c, frame_count, offsets_x, offsets_y, grid, frames, black, flags, projector_x, projector_y,
                         indices, weights, energy);
   }
 }

@@ -52,7 +52,7 @@ __kernel void gray_pairs_ndrange(RF_FRAME_PARAMETERS, float sample_black, float 
 #endif
 
 RF_SINGLE_TASK
-__kernel void gray_pairs_single(__global const float* restrict frames, int pair_count,
+__kernel void gray_pairs_single(__global const RfFrameSamples* restrict frames, int pair_count,
                                 __global const uint* restrict pairs, float white_threshold,
                                 __global uint* restrict code_x, __global uint* restrict code_y,
                                 __global uchar* restrict flags, uint n) {

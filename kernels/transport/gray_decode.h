@@ -9,6 +9,7 @@
 #ifndef RFRECON_KERNELS_TRANSPORT_GRAY_DECODE_H
 #define RFRECON_KERNELS_TRANSPORT_GRAY_DECODE_H
 
+#include "common/frame_samples.h"
 #include "common/lanes.h"
 #include "common/params.h"
 #include "common/portable.h"
@@ -33,17 +34,19 @@ RF_INLINE unsigned char rf_gray_pair_flag(float pattern, float inverse, float wh
 
 // A batch of pair_count <= RF_GRAY_PAIR_BATCH pairs at pixel c of n, unrolled to the batch's size (the single
 // work-item entries): pair p sets masks[p] in code_x (axes[p] == 0) or code_y.
-RF_INLINE void rf_gray_pairs_pixel(unsigned c, unsigned n, int pair_count, const unsigned* masks, const unsigned* axes,
-                                   float white_threshold, RF_GLOBAL const float* frames, RF_GLOBAL unsigned* code_x,
-                                   RF_GLOBAL unsigned* code_y, RF_GLOBAL unsigned char* flags) {
+RF_INLINE void rf_gray_pairs_pixel(unsigned c, int pair_count, const unsigned* masks, const unsigned* axes,
+                                   float white_threshold, RF_GLOBAL const RfFrameSamples* frames,
+                                   RF_GLOBAL unsigned* code_x, RF_GLOBAL unsigned* code_y,
+                                   RF_GLOBAL unsigned char* flags) {
+  const RfFrameSamples batch = frames[c];
   unsigned x = code_x[c];
   unsigned y = code_y[c];
   unsigned char f = flags[c];
   RF_UNROLL
   for (int p = 0; p < RF_GRAY_PAIR_BATCH; ++p) {
     const int active = p < pair_count;
-    const float pattern = active ? frames[(size_t)(2 * p) * n + c] : 0.0f;
-    const float inverse = active ? frames[(size_t)(2 * p + 1) * n + c] : 0.0f;
+    const float pattern = active ? batch.sample[2 * p] : 0.0f;
+    const float inverse = active ? batch.sample[2 * p + 1] : 0.0f;
     // Selects rather than branches: one straight datapath on FPGAs.
     const unsigned bit = active ? rf_gray_pair_bit(pattern, inverse, masks[p]) : 0u;
     x |= axes[p] != 0 ? 0u : bit;
@@ -150,15 +153,15 @@ RF_INLINE void rf_gray_finalize_lanes(uint c0, float8 white, float8 black, float
 // The single work-item loops over the n pixels (the OpenCL `_single` entries and the HLS tops); the batch's pairs
 // copied on chip first.
 RF_INLINE void rf_gray_pairs_pixels(unsigned n, int pair_count, RF_GLOBAL const unsigned* pairs, float white_threshold,
-                                    RF_GLOBAL const float* frames, RF_GLOBAL unsigned* code_x,
+                                    RF_GLOBAL const RfFrameSamples* frames, RF_GLOBAL unsigned* code_x,
                                     RF_GLOBAL unsigned* code_y, RF_GLOBAL unsigned char* flags) {
   unsigned masks[RF_GRAY_PAIR_BATCH] RF_PARTITION_COMPLETE;
   unsigned axes[RF_GRAY_PAIR_BATCH] RF_PARTITION_COMPLETE;
   rf_load_gray_pairs(pairs, masks, axes);
   RF_PIPELINE_II(1)
   for (unsigned c = 0; c < n; ++c) {
-    RF_HLS_PIPELINE_II(RF_FRAME_BATCH)  // one AXI beat per frame sample (2 x RF_GRAY_PAIR_BATCH)
-    rf_gray_pairs_pixel(c, n, pair_count, masks, axes, white_threshold, frames, code_x, code_y, flags);
+    RF_HLS_PIPELINE  // one AXI beat of the pixel's frame samples, one of each code and the flags
+    rf_gray_pairs_pixel(c, pair_count, masks, axes, white_threshold, frames, code_x, code_y, flags);
   }
 }
 

@@ -37,7 +37,7 @@ __kernel void phase_steps_ndrange(RF_FRAME_PARAMETERS, float sample_black, float
 #endif
 
 RF_SINGLE_TASK
-__kernel void phase_steps_single(__global const float* restrict frames, int axis, int step_count,
+__kernel void phase_steps_single(__global const RfFrameSamples* restrict frames, int axis, int step_count,
                                  __global const float* restrict shifts, __global float* restrict sums, uint n) {
   rf_phase_steps_pixels(n, axis, step_count, shifts, frames, sums);
 }

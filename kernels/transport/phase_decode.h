@@ -179,17 +179,18 @@ RF_INLINE void rf_phase_finalize_pixel(unsigned c, unsigned n, float white, floa
 }
 
 // The single work-item loops over the n pixels (the OpenCL `_single` entries and the HLS tops). phase_steps: the
-// batch's frames in one array, step p's at p * n; its shifts copied on chip first.
+// batch's frames pixel-major (common/frame_samples.h); its shifts copied on chip first.
 RF_INLINE void rf_phase_steps_pixels(unsigned n, int axis, int step_count, RF_GLOBAL const float* shifts,
-                                     RF_GLOBAL const float* frames, RF_GLOBAL float* sums) {
+                                     RF_GLOBAL const RfFrameSamples* frames, RF_GLOBAL float* sums) {
   float local_shifts[2 * RF_FRAME_BATCH] RF_PARTITION_COMPLETE;
   rf_load_phase_shifts(shifts, local_shifts);
   RF_PIPELINE_II(1)
   for (unsigned c = 0; c < n; ++c) {
-    RF_HLS_PIPELINE_II(RF_FRAME_BATCH)  // one AXI beat per frame sample
+    RF_HLS_PIPELINE_II(2)  // two of the pixel's sums read and written (its frame samples: one beat)
+    const RfFrameSamples batch = frames[c];
     float values[RF_FRAME_BATCH] RF_PARTITION_COMPLETE;
     RF_UNROLL
-    for (int p = 0; p < RF_FRAME_BATCH; ++p) values[p] = p < step_count ? frames[(size_t)p * n + c] : 0.0f;
+    for (int p = 0; p < RF_FRAME_BATCH; ++p) values[p] = p < step_count ? batch.sample[p] : 0.0f;
     rf_phase_steps_add(c, n, axis, step_count, values, local_shifts, sums);
   }
 }

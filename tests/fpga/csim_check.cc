@@ -6,7 +6,9 @@
 #include <cstddef>
 #include <map>
 #include <memory>
+#include <set>
 #include <sstream>
+#include <tuple>
 #include <unordered_map>
 #include <utility>
 
@@ -21,16 +23,19 @@ constexpr std::size_t kViolationsKept = 8;  // per loop; the rest are counted
 
 struct Region {
   std::uintptr_t begin = 0, end = 0;  // end unused for a bundle (up to the next bundle's start)
-  std::size_t element_bytes = 0;
-  std::size_t bank_bytes = 0;  // an on-chip array's blocks, one RAM each
-  std::string name;            // the array, or the bundle
-  std::string argument;        // a bundle's argument
+  std::size_t element_bytes = 0;      // a bundle's: one AXI word, its argument's element (a wide struct: one beat)
+  std::size_t bank_bytes = 0;         // an on-chip array's blocks, one RAM each
+  std::string name;                   // the array, or the bundle
+  std::string argument;               // a bundle's argument
   bool bundle = false;
 };
 
+// One load or store. A bundle's accesses to one word (`beat`: the argument and the word's index) in one iteration
+// are one beat, as a wide word's fields are loaded in pieces; each RAM access counts (beat empty).
 struct Touch {
   std::string memory;
   bool write;
+  std::string beat;
 };
 
 struct Loop {
@@ -159,14 +164,18 @@ void record(const void* at, std::size_t size, bool write) {
       }
     }
   }
-  s.touches.back().push_back(Touch{memory, write});
+  const std::string beat =
+      region->bundle ? region->argument + "#" + std::to_string((address - region->begin) / region->element_bytes) : "";
+  s.touches.back().push_back(Touch{memory, write, beat});
 }
 
 // Each memory's reads and writes in the iteration that ends: every load and store the compiled body made (the
 // compiler merges the loads it can prove the same, as a tool does; two gathers that happen to meet are two reads).
 void close_iteration(Loop& loop, const std::vector<Touch>& touches) {
   std::map<std::string, std::pair<int, int>> counts;
+  std::set<std::tuple<std::string, bool, std::string>> beats;
   for (const Touch& t : touches) {
+    if (!t.beat.empty() && !beats.insert({t.memory, t.write, t.beat}).second) continue;
     auto& [reads, writes] = counts[t.memory];
     ++(t.write ? writes : reads);
   }
@@ -219,9 +228,9 @@ Memory::Memory(const void* at, std::size_t bytes, std::size_t element_bytes, int
   state().regions.push_back(Region{begin, begin + bytes, element_bytes, bytes / banks, name, "", false});
 }
 
-Memory::Memory(const void* at, const char* argument, const char* bundle) : at_(at) {
+Memory::Memory(const void* at, std::size_t element_bytes, const char* argument, const char* bundle) : at_(at) {
   ++state().events;
-  state().regions.push_back(Region{reinterpret_cast<std::uintptr_t>(at), 0, 0, 0, bundle, argument, true});
+  state().regions.push_back(Region{reinterpret_cast<std::uintptr_t>(at), 0, element_bytes, 0, bundle, argument, true});
 }
 
 Memory::~Memory() {

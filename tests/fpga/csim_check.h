@@ -5,7 +5,8 @@
 // defines the __tsan_read / __tsan_write entry points the compiler puts before every load and store, so every access
 // the compiled loop body makes, after the compiler's own optimizations, is counted. An access inside an iteration
 // (RF_HLS_PIPELINE) goes to the on-chip RAM (RF_ON_CHIP_RAM, one per field of a struct array) or AXI bundle
-// (RF_HLS_M_AXI) that holds its address; other stack addresses are registers, not counted.
+// (RF_HLS_M_AXI) that holds its address; other stack addresses are registers, not counted. A bundle counts beats: the
+// loads (or stores) of one iteration within one word of an argument (its pointee type, a wide struct's whole) are one.
 #pragma once
 
 #include <cstdint>

@@ -2,6 +2,8 @@
 // ThreadSanitizer's instrumentation): what csim_check_selftest.cc expects the check to find in each.
 #define RF_TARGET_HLS  // kernels/common/target.h: the HLS directives, here the check's hooks
 
+#include "tests/fpga/csim_check_probes.h"
+
 #include "hls/hls_top.h"
 
 namespace rf_csim::probes {
@@ -77,6 +79,19 @@ void struct_fields(const float* x, float* out, int n) {
     pairs[i % 4].product *= x[i];
   }
   for (int k = 0; k < 4; ++k) out[k] = pairs[k].sum + pairs[k].product;
+}
+
+// out[i] = the sum of x[i]'s 16 floats: one wide word of its argument, one beat per iteration.
+void wide_word_sum(const WideWord* x, float* out, int n) {
+  RF_HLS_M_AXI(x, gmem0)
+  RF_HLS_M_AXI(out, gmem1)
+  for (int i = 0; i < n; ++i) {
+    RF_HLS_PIPELINE
+    const WideWord word = x[i];
+    float sum = 0.0f;
+    for (const float v : word.value) sum += v;
+    out[i] = sum;
+  }
 }
 
 }  // namespace rf_csim::probes

@@ -1,19 +1,13 @@
 // The access and dependence check finds what it is for (csim_check_probes.cc): a false dependence directive, a RAM
-// read three times and a bundle read twice per iteration; a true directive, and a struct array's fields, pass.
+// read three times and a bundle read twice per iteration; a true directive, a struct array's fields and a wide word
+// read in pieces (one beat), pass.
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "tests/fpga/csim_check.h"
-
-namespace rf_csim::probes {
-void accumulate(const float* x, float* out, int n, int claimed);
-void prefix_sum(const float* x, float* out, int n);
-void three_taps(const float* x, float* out, int n);
-void two_reads_one_bundle(const float* x, float* out, int n);
-void struct_fields(const float* x, float* out, int n);
-}  // namespace rf_csim::probes
+#include "tests/fpga/csim_check_probes.h"
 
 namespace rf_csim {
 namespace {
@@ -84,6 +78,21 @@ TEST_F(CsimCheck, TwoReadsOfOneBundleNeedTwoClocks) {
   const auto [loop, x] = only_loop("gmem0");
   EXPECT_EQ(x.reads, 2);
   EXPECT_EQ(loop.initiation_interval(), 2);
+}
+
+TEST_F(CsimCheck, WideWordIsOneBeatAndItsFloatsAreSixteen) {
+  const std::vector<probes::WideWord> words(8, probes::WideWord{{1.0f, 2.0f, 3.0f, 4.0f}});
+  std::vector<float> out(8);
+  probes::wide_word_sum(words.data(), out.data(), 8);
+  const auto [loop, x] = only_loop("gmem0");
+  EXPECT_EQ(x.reads, 1);
+  EXPECT_EQ(loop.initiation_interval(), 1);
+  EXPECT_EQ(out[0], 10.0f);
+  // The same 16 floats read from a float argument are 16 beats.
+  reset();
+  std::vector<float> sums(4);
+  probes::two_reads_one_bundle(reinterpret_cast<const float*>(words.data()), sums.data(), 4);
+  EXPECT_EQ(only_loop("gmem0").second.reads, 2);
 }
 
 TEST_F(CsimCheck, StructArrayIsOneRamPerField) {

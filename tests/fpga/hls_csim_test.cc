@@ -131,6 +131,21 @@ TEST(HlsCsim, SelfcheckTopMatchesReference) {
 namespace rfrecon::transport {
 namespace {
 
+// The tops' batch of frames, pixel-major (kernels/common/frame_samples.h), as host/transport/device_frames.cc writes
+// it.
+class FrameBatch {
+ public:
+  explicit FrameBatch(std::size_t n = 0) : samples_(n) {}
+  void set(unsigned slot, const cv::Mat& frame) {
+    const float* linear = frame.ptr<float>();
+    for (std::size_t c = 0; c < samples_.size(); ++c) samples_[c].sample[slot] = linear[c];
+  }
+  const RfFrameSamples* data() const { return samples_.data(); }
+
+ private:
+  std::vector<RfFrameSamples> samples_;
+};
+
 // The transport accumulator on the HLS tops, its buffers host vectors, the Gray pairs batched RF_GRAY_PAIR_BATCH and
 // the dot frames RF_FRAME_BATCH at a time in one batch buffer, as the device accumulator batches them.
 class HlsAccumulator final : public GraycodeAccumulator {
@@ -139,13 +154,12 @@ class HlsAccumulator final : public GraycodeAccumulator {
     setup.thresholds = resolve_thresholds(setup.thresholds, 8);
     t_ = make_empty_transport(setup);
     n_ = static_cast<unsigned>(t_.camera_pixels());
-    batch_.resize(static_cast<std::size_t>(std::max(RF_FRAME_BATCH, 2 * RF_GRAY_PAIR_BATCH)) * n_);
+    batch_ = FrameBatch(n_);
   }
 
   void add_gray_pair(GrayAxis axis, int bit, const cv::Mat& pattern, const cv::Mat& inverse) override {
-    const auto frame = batch_.begin() + static_cast<std::ptrdiff_t>(2 * gray_pending_ * n_);
-    std::copy_n(pattern.ptr<float>(), n_, frame);
-    std::copy_n(inverse.ptr<float>(), n_, frame + n_);
+    batch_.set(2 * gray_pending_, pattern);
+    batch_.set(2 * gray_pending_ + 1, inverse);
     pairs_[2 * gray_pending_] = gray_bit_mask(t_.setup, axis, bit);
     pairs_[2 * gray_pending_ + 1] = axis == GrayAxis::kColumns ? 0 : 1;
     if (++gray_pending_ == RF_GRAY_PAIR_BATCH) decode_batch();
@@ -161,7 +175,7 @@ class HlsAccumulator final : public GraycodeAccumulator {
   }
 
   void add_dot_frame(int offset_x, int offset_y, const cv::Mat& frame) override {
-    std::copy_n(frame.ptr<float>(), n_, batch_.begin() + static_cast<std::ptrdiff_t>(pending_ * n_));
+    batch_.set(pending_, frame);
     offsets_[2 * pending_] = offset_x;
     offsets_[2 * pending_ + 1] = offset_y;
     if (++pending_ == RF_FRAME_BATCH) compress_batch();
@@ -196,7 +210,7 @@ class HlsAccumulator final : public GraycodeAccumulator {
   CompressedTransport t_;
   unsigned n_ = 0;
   cv::Mat white_, black_;
-  std::vector<float> batch_;
+  FrameBatch batch_;
   unsigned gray_pending_ = 0;
   std::array<unsigned, 2 * RF_GRAY_PAIR_BATCH> pairs_ = {};
   unsigned pending_ = 0;
@@ -243,7 +257,7 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
     setup.thresholds = resolve_thresholds(setup.thresholds, 8);
     t_ = make_empty_transport(setup);
     n_ = static_cast<unsigned>(t_.camera_pixels());
-    batch_.resize(static_cast<std::size_t>(RF_FRAME_BATCH) * n_);
+    batch_ = FrameBatch(n_);
     sums_.assign(4 * static_cast<std::size_t>(n_), 0.0f);
     estimates_.assign(4 * static_cast<std::size_t>(n_), 0.0f);
   }
@@ -256,7 +270,7 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
     if (step.op == kPhaseShiftStep) {
       if (steps_pending_ > 0 && axis != axis_) add_steps();
       axis_ = axis;
-      std::copy_n(frames.at(0).ptr<float>(), n_, batch_.begin() + static_cast<std::ptrdiff_t>(steps_pending_ * n_));
+      batch_.set(steps_pending_, frames.at(0));
       std::tie(shifts_[2 * steps_pending_], shifts_[2 * steps_pending_ + 1]) = phase_shift(t_.setup, step.args[1]);
       if (++steps_pending_ == RF_FRAME_BATCH) add_steps();
     } else if (step.op == kPhaseFoldStep) {
@@ -264,16 +278,15 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
       fold(axis, step.args[1]);
     } else if (step.op == kPhaseDotStep) {
       if (!resolved_) resolve();
-      std::copy_n(frames.at(0).ptr<float>(), n_, batch_.begin() + static_cast<std::ptrdiff_t>(dots_pending_ * n_));
+      batch_.set(dots_pending_, frames.at(0));
       offsets_[2 * dots_pending_] = step.args[0];
       offsets_[2 * dots_pending_ + 1] = step.args[1];
       if (++dots_pending_ == RF_FRAME_BATCH) add_dots();
     } else {
       if (steps_pending_ > 0) add_steps();
-      const auto frame = batch_.begin() + static_cast<std::ptrdiff_t>(2 * pairs_pending_ * n_);
-      std::copy_n(frames.at(0).ptr<float>(), n_, frame);
+      batch_.set(2 * pairs_pending_, frames.at(0));
       const cv::Mat inverse = frames.size() > 1 ? frames[1] : order_inverse_frame(t_.setup, frames.at(0), white, black);
-      std::copy_n(inverse.ptr<float>(), n_, frame + n_);
+      batch_.set(2 * pairs_pending_ + 1, inverse);
       pairs_[2 * pairs_pending_] = order_bit_mask(t_.setup, axis, step.args[1]);
       pairs_[2 * pairs_pending_ + 1] = static_cast<unsigned>(axis);
       if (++pairs_pending_ == RF_GRAY_PAIR_BATCH) add_pairs();
@@ -356,7 +369,7 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
   CompressedTransport t_;
   unsigned n_ = 0;
   cv::Mat white_, black_;
-  std::vector<float> batch_;
+  FrameBatch batch_;
   std::vector<float> sums_;
   std::vector<float> estimates_;
   int axis_ = 0;
