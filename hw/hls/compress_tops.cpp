@@ -9,7 +9,7 @@
 extern "C" void dot_frames_single(const RfFrameSamples* frames, int frame_count, const int* offsets, int spacing,
                                   int projector_width, int projector_height, float noise_threshold, const float* black,
                                   const unsigned char* flags, const unsigned* projector_x, const unsigned* projector_y,
-                                  int* indices, float* weights, float* energy, unsigned n) {
+                                  RfEllIndices* indices, RfEllWeights* weights, float* energy, unsigned n) {
   RF_HLS_M_AXI(frames, gmem0)
   RF_HLS_M_AXI(offsets, gmem1)
   RF_HLS_M_AXI(black, gmem2)
@@ -27,8 +27,8 @@ extern "C" void dot_frames_single(const RfFrameSamples* frames, int frame_count,
 
 extern "C" void finalize_single(const float* white, const float* black, int has_dots, int projector_width,
                                 float noise_threshold, unsigned char* flags, const unsigned* projector_x,
-                                const unsigned* projector_y, int* indices, float* weights, float* energy,
-                                float* correspondence, unsigned n) {
+                                const unsigned* projector_y, RfEllIndices* indices, RfEllWeights* weights,
+                                float* energy, RfCorrespondence* correspondence, unsigned n) {
   RF_HLS_M_AXI(white, gmem0)
   RF_HLS_M_AXI(black, gmem1)
   RF_HLS_M_AXI(flags, gmem2)

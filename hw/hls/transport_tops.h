@@ -6,6 +6,7 @@
 #pragma once
 
 #include "common/frame_samples.h"
+#include "transport/ell_rows.h"
 
 extern "C" {
 
@@ -29,10 +30,11 @@ void phase_finalize_single(const float* white, const float* black, float black_t
 void dot_frames_single(const RfFrameSamples* frames, int frame_count, const int* offsets, int spacing,
                        int projector_width, int projector_height, float noise_threshold, const float* black,
                        const unsigned char* flags, const unsigned* projector_x, const unsigned* projector_y,
-                       int* indices, float* weights, float* energy, unsigned n);
+                       RfEllIndices* indices, RfEllWeights* weights, float* energy, unsigned n);
 void finalize_single(const float* white, const float* black, int has_dots, int projector_width, float noise_threshold,
-                     unsigned char* flags, const unsigned* projector_x, const unsigned* projector_y, int* indices,
-                     float* weights, float* energy, float* correspondence, unsigned n);
+                     unsigned char* flags, const unsigned* projector_x, const unsigned* projector_y,
+                     RfEllIndices* indices, RfEllWeights* weights, float* energy, RfCorrespondence* correspondence,
+                     unsigned n);
 
 void primal_single(const int* indices, const float* weights, const float* light, float* image, unsigned n);
 void dual_single(const int* row_start, const int* entry_row, const int* camera_pixel, const float* weights,

@@ -6,7 +6,7 @@
 
 #include "common/params.h"
 
-typedef struct {
+typedef struct {  // NOLINT(modernize-use-using): shared with OpenCL C, which has no `using`
   float sample[RF_FRAME_BATCH];
 } RfFrameSamples;
 

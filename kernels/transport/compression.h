@@ -8,13 +8,13 @@
 // s/2) / s) (same for y), so the s x s frames fill its window [px - (s-1)/2, px + s/2] x [py - (s-1)/2, py + s/2]:
 // with x0 = px - (s-1)/2 and a = x0 mod s, qx = x0 + ((ox - a) mod s), where ox - a lies in (-s, s).
 //
-// Frames come in batches of up to RF_FRAME_BATCH (one array, frame f at f * n + c, or one array per frame): a pixel's
-// row is read once per batch, updated in registers frame after frame in the batch's order (so the result equals one
-// frame at a time, to the bit), and written back once, only when a frame of the batch reached it. The only remainder
-// by the run-time spacing, a = x0 mod s, is computed once per pixel and batch: on FPGA targets a choice among divisions
-// by the compile-time RF_DOT_SPACINGS (the host refuses other spacings), elsewhere a multiplication by 1 / s corrected
-// to the exact remainder. The centroid's row of an entry, q / width, is a multiplication by 1 / width (computed once)
-// corrected to the exact quotient.
+// Frames come in batches of up to RF_FRAME_BATCH (one array pixel-major, common/frame_samples.h, or one per frame): a
+// pixel's row is read once per batch, updated in registers frame after frame in the batch's order (so the result equals
+// one frame at a time, to the bit), and written back once, only when a frame of the batch reached it. The only
+// remainder by the run-time spacing, a = x0 mod s, is computed once per pixel and batch: on FPGA targets a choice among
+// divisions by the compile-time RF_DOT_SPACINGS (the host refuses other spacings), elsewhere a multiplication by 1 / s
+// corrected to the exact remainder. The centroid's row of an entry, q / width, is a multiplication by 1 / width
+// (computed once) corrected to the exact quotient.
 #ifndef RFRECON_KERNELS_TRANSPORT_COMPRESSION_H
 #define RFRECON_KERNELS_TRANSPORT_COMPRESSION_H
 
@@ -23,6 +23,7 @@
 #include "common/params.h"
 #include "common/portable.h"
 #include "common/target.h"
+#include "transport/ell_rows.h"
 #include "transport/flags.h"
 #ifdef __OPENCL_VERSION__
 #include "common/frame_batch.h"
@@ -79,26 +80,30 @@ typedef struct {  // NOLINT(modernize-use-using): shared with OpenCL C, which ha
 } RfDotGrid;
 
 // Pixel c's row emptied: index -1, weight 0 in every slot.
-RF_INLINE void rf_empty_row(unsigned c, RF_GLOBAL int* indices, RF_GLOBAL float* weights) {
+RF_INLINE void rf_empty_row(unsigned c, RF_GLOBAL RfEllIndices* indices, RF_GLOBAL RfEllWeights* weights) {
+  RfEllIndices row_index;
+  RfEllWeights row_weight;
   RF_UNROLL
   for (int k = 0; k < RF_K; ++k) {
-    indices[(size_t)c * RF_K + k] = -1;
-    weights[(size_t)c * RF_K + k] = 0.0f;
+    row_index.q[k] = -1;
+    row_weight.w[k] = 0.0f;
   }
+  indices[c] = row_index;
+  weights[c] = row_weight;
 }
 
 // Pixel c's ELL row and energy updated with the batch's contributions, in the batch's order: frame f lit projector
-// pixel dot[f] (-1: none) with value[f].
-RF_INLINE void rf_dot_update_row(unsigned c, const float* value, const int* dot, RF_GLOBAL int* indices,
-                                 RF_GLOBAL float* weights, RF_GLOBAL float* energy) {
-  RF_GLOBAL int* row_index = indices + (size_t)c * RF_K;
-  RF_GLOBAL float* row_weight = weights + (size_t)c * RF_K;
+// pixel dot[f] (-1: none) with value[f]. The row is read and written once, one word each (transport/ell_rows.h).
+RF_INLINE void rf_dot_update_row(unsigned c, const float* value, const int* dot, RF_GLOBAL RfEllIndices* indices,
+                                 RF_GLOBAL RfEllWeights* weights, RF_GLOBAL float* energy) {
+  RfEllIndices row_index = indices[c];
+  RfEllWeights row_weight = weights[c];
   int index[RF_K] RF_PARTITION_COMPLETE;
   float weight[RF_K] RF_PARTITION_COMPLETE;
   RF_UNROLL
   for (int k = 0; k < RF_K; ++k) {
-    index[k] = row_index[k];
-    weight[k] = row_weight[k];
+    index[k] = row_index.q[k];
+    weight[k] = row_weight.w[k];
   }
   float e = energy[c];
   RF_UNROLL
@@ -110,9 +115,11 @@ RF_INLINE void rf_dot_update_row(unsigned c, const float* value, const int* dot,
   }
   RF_UNROLL
   for (int k = 0; k < RF_K; ++k) {
-    row_index[k] = index[k];
-    row_weight[k] = weight[k];
+    row_index.q[k] = index[k];
+    row_weight.w[k] = weight[k];
   }
+  indices[c] = row_index;
+  weights[c] = row_weight;
   energy[c] = e;
 }
 
@@ -121,8 +128,8 @@ RF_INLINE void rf_dot_update_row(unsigned c, const float* value, const int* dot,
 RF_INLINE void rf_dot_samples_pixel(unsigned c, const float* sample, int frame_count, const int* offsets_x,
                                     const int* offsets_y, RfDotGrid grid, RF_GLOBAL const float* black,
                                     RF_GLOBAL const unsigned char* flags, RF_GLOBAL const unsigned* projector_x,
-                                    RF_GLOBAL const unsigned* projector_y, RF_GLOBAL int* indices,
-                                    RF_GLOBAL float* weights, RF_GLOBAL float* energy) {
+                                    RF_GLOBAL const unsigned* projector_y, RF_GLOBAL RfEllIndices* indices,
+                                    RF_GLOBAL RfEllWeights* weights, RF_GLOBAL float* energy) {
   if (!RF_COMPRESSIBLE(flags[c])) return;
   const int s = grid.spacing;
   const int x0 = rf_window_start((int)projector_x[c], s);
@@ -152,8 +159,8 @@ RF_INLINE void rf_dot_samples_pixel(unsigned c, const float* sample, int frame_c
 RF_INLINE void rf_dot_frames_pixel(unsigned c, int frame_count, const int* offsets_x, const int* offsets_y,
                                    RfDotGrid grid, RF_GLOBAL const RfFrameSamples* frames, RF_GLOBAL const float* black,
                                    RF_GLOBAL const unsigned char* flags, RF_GLOBAL const unsigned* projector_x,
-                                   RF_GLOBAL const unsigned* projector_y, RF_GLOBAL int* indices,
-                                   RF_GLOBAL float* weights, RF_GLOBAL float* energy) {
+                                   RF_GLOBAL const unsigned* projector_y, RF_GLOBAL RfEllIndices* indices,
+                                   RF_GLOBAL RfEllWeights* weights, RF_GLOBAL float* energy) {
   const RfFrameSamples batch = frames[c];
   float sample[RF_FRAME_BATCH] RF_PARTITION_COMPLETE;
   RF_UNROLL
@@ -301,14 +308,14 @@ RF_INLINE void rf_load_dot_offsets(RF_GLOBAL const int* offsets, int* offsets_x,
 RF_INLINE void rf_dot_frames_pixels(unsigned n, int frame_count, RF_GLOBAL const int* offsets, RfDotGrid grid,
                                     RF_GLOBAL const RfFrameSamples* frames, RF_GLOBAL const float* black,
                                     RF_GLOBAL const unsigned char* flags, RF_GLOBAL const unsigned* projector_x,
-                                    RF_GLOBAL const unsigned* projector_y, RF_GLOBAL int* indices,
-                                    RF_GLOBAL float* weights, RF_GLOBAL float* energy) {
+                                    RF_GLOBAL const unsigned* projector_y, RF_GLOBAL RfEllIndices* indices,
+                                    RF_GLOBAL RfEllWeights* weights, RF_GLOBAL float* energy) {
   int offsets_x[RF_FRAME_BATCH] RF_PARTITION_COMPLETE;
   int offsets_y[RF_FRAME_BATCH] RF_PARTITION_COMPLETE;
   rf_load_dot_offsets(offsets, offsets_x, offsets_y);
   RF_PIPELINE_II(1)
   for (unsigned c = 0; c < n; ++c) {
-    RF_HLS_PIPELINE_II(RF_K)  // one AXI beat per ELL entry (the frame samples: one beat)
+    RF_HLS_PIPELINE  // one AXI beat each: the frame samples, the ELL row's indices and weights, read and written
     rf_dot_frames_pixel(c, frame_count, offsets_x, offsets_y, grid, frames, black, flags, projector_x, projector_y,
                         indices, weights, energy);
   }
@@ -332,13 +339,17 @@ RF_INLINE int rf_row_of(int q, int width, float inverse_width) {
 RF_INLINE void rf_finalize_pixel(unsigned c, float white, float black, int has_dots, int projector_width,
                                  float inverse_width, float noise_threshold, RF_GLOBAL unsigned char* flags,
                                  RF_GLOBAL const unsigned* projector_x, RF_GLOBAL const unsigned* projector_y,
-                                 RF_GLOBAL int* indices, RF_GLOBAL float* weights, RF_GLOBAL float* energy,
-                                 RF_GLOBAL float* correspondence) {
+                                 RF_GLOBAL RfEllIndices* indices, RF_GLOBAL RfEllWeights* weights,
+                                 RF_GLOBAL float* energy, RF_GLOBAL RfCorrespondence* correspondence) {
   const int valid = (flags[c] & (unsigned char)RF_FLAG_VALID) != 0;
   const float lit = white - black;
+  RfEllIndices row_index = indices[c];
+  RfEllWeights row_weight = weights[c];
   if (valid && has_dots == 0 && lit > noise_threshold) {
-    indices[(size_t)c * RF_K] = (int)(projector_y[c] * (unsigned)projector_width + projector_x[c]);
-    weights[(size_t)c * RF_K] = lit;
+    row_index.q[0] = (int)(projector_y[c] * (unsigned)projector_width + projector_x[c]);
+    row_weight.w[0] = lit;
+    indices[c] = row_index;
+    weights[c] = row_weight;
     energy[c] = lit;
   }
   float sum = 0.0f;
@@ -346,9 +357,9 @@ RF_INLINE void rf_finalize_pixel(unsigned c, float white, float black, int has_d
   float sum_y = 0.0f;
   RF_UNROLL
   for (int k = 0; k < RF_K; ++k) {
-    const int q = indices[(size_t)c * RF_K + k];
+    const int q = row_index.q[k];
     if (q >= 0) {
-      const float w = weights[(size_t)c * RF_K + k];
+      const float w = row_weight.w[k];
       const int y = rf_row_of(q, projector_width, inverse_width);
       sum += w;
       sum_x += w * (float)(q - y * projector_width);
@@ -356,20 +367,22 @@ RF_INLINE void rf_finalize_pixel(unsigned c, float white, float black, int has_d
     }
   }
   const int found = sum > 0.0f;
-  correspondence[2 * (size_t)c] = found ? sum_x / sum : NAN;
-  correspondence[2 * (size_t)c + 1] = found ? sum_y / sum : NAN;
+  RfCorrespondence point;
+  point.x = found ? sum_x / sum : NAN;
+  point.y = found ? sum_y / sum : NAN;
+  correspondence[c] = point;
   if (RF_COMPRESSIBLE(flags[c]) && !found) flags[c] |= (unsigned char)RF_FLAG_NO_SIGNAL;
 }
 
 RF_INLINE void rf_finalize_pixels(unsigned n, RF_GLOBAL const float* white, RF_GLOBAL const float* black, int has_dots,
                                   int projector_width, float noise_threshold, RF_GLOBAL unsigned char* flags,
                                   RF_GLOBAL const unsigned* projector_x, RF_GLOBAL const unsigned* projector_y,
-                                  RF_GLOBAL int* indices, RF_GLOBAL float* weights, RF_GLOBAL float* energy,
-                                  RF_GLOBAL float* correspondence) {
+                                  RF_GLOBAL RfEllIndices* indices, RF_GLOBAL RfEllWeights* weights,
+                                  RF_GLOBAL float* energy, RF_GLOBAL RfCorrespondence* correspondence) {
   const float inverse_width = 1.0f / (float)projector_width;
   RF_PIPELINE_II(1)
   for (unsigned c = 0; c < n; ++c) {
-    RF_HLS_PIPELINE_II(RF_K)  // one AXI beat per ELL entry
+    RF_HLS_PIPELINE  // one AXI beat each: the ELL row's indices and weights, the correspondence
     rf_finalize_pixel(c, white[c], black[c], has_dots, projector_width, inverse_width, noise_threshold, flags,
                       projector_x, projector_y, indices, weights, energy, correspondence);
   }

@@ -2,8 +2,8 @@
 //   gray_pairs_ndrange: a batch of up to RF_GRAY_PAIR_BATCH pattern/inverse pairs per launch, as RF_FRAME_BATCH
 //                       frame buffers (common/frame_batch.h: pair p's pattern is frame 2p, its inverse frame 2p + 1),
 //                       RF_LANES pixels per work-item.
-//   gray_pairs_single:  the same batch in one buffer (pair p's pattern at 2p * n, its inverse at (2p + 1) * n), one
-//                       pixel per iteration (FPGA boards).
+//   gray_pairs_single:  the same batch in one buffer, pixel-major (common/frame_samples.h: pair p's pattern is a
+//                       pixel's sample 2p, its inverse 2p + 1), one pixel per iteration (FPGA boards).
 //   Both take `pairs`, RF_GRAY_PAIR_BATCH (bit mask, axis) pairs (axis 0: columns, code_x; 1: rows, code_y); each
 //   pixel's state is read and written once per batch. The NDRange entry's frames are RF_SAMPLE, made linear with
 //   (sample_black, sample_scale); the single work-item entry's are linear floats.

@@ -2,10 +2,10 @@
 // the HLS C++ top (hw/hls/). State per pixel: the Gray words of both axes (a bit set where pattern > inverse) and the
 // flags. Frames are linear camera responses in [0, 1] (host/capture/manifest.h); thresholds in the same units.
 //
-// Pattern / inverse pairs come in batches of up to RF_GRAY_PAIR_BATCH (pair p of the batch: pattern at 2p * n + c,
-// inverse at (2p + 1) * n + c in one array; or frames 2p and 2p + 1 of RF_FRAME_BATCH arrays, in lanes), so that a
-// pixel's state is read once per batch, updated in registers pair after pair in the batch's order (equal to one pair
-// at a time, to the bit) and written back once: one read-modify-write of memory per batch rather than per pair.
+// Pattern / inverse pairs come in batches of up to RF_GRAY_PAIR_BATCH (pair p of the batch: samples 2p and 2p + 1 of
+// a pixel's RfFrameSamples, common/frame_samples.h; or frames 2p and 2p + 1 of RF_FRAME_BATCH arrays, in lanes), so
+// that a pixel's state is read once per batch, updated in registers pair after pair in the batch's order (equal to one
+// pair at a time, to the bit) and written back once: one read-modify-write of memory per batch rather than per pair.
 #ifndef RFRECON_KERNELS_TRANSPORT_GRAY_DECODE_H
 #define RFRECON_KERNELS_TRANSPORT_GRAY_DECODE_H
 

@@ -2,8 +2,8 @@
 //   phase_steps_ndrange: a batch of up to RF_FRAME_BATCH phase steps of one axis per launch, as RF_FRAME_BATCH frame
 //                        buffers (common/frame_batch.h; unused ones repeat frame 0) of RF_SAMPLE made linear with
 //                        (sample_black, sample_scale), RF_LANES pixels per work-item, one after another.
-//   phase_steps_single:  the same batch in one buffer of linear floats (step p at p * n), one pixel per iteration
-//                        (FPGA boards).
+//   phase_steps_single:  the same batch in one buffer of linear floats, pixel-major (common/frame_samples.h: step p
+//                        is a pixel's sample p), one pixel per iteration (FPGA boards).
 //   Both take `shifts`, RF_FRAME_BATCH (sin, cos) pairs of the steps' phase shifts, and add to `sums` (four planes
 //   of n floats: S and C of the columns, then of the rows).
 //   phase_fold_*:        after the steps of one of an axis's longer periods: its phase unwrapped into the axis's

@@ -146,6 +146,12 @@ class FrameBatch {
   std::vector<RfFrameSamples> samples_;
 };
 
+// T's rows and correspondences as the compression's tops take them (kernels/transport/ell_rows.h): the same memory,
+// which an aggregate of its element type may access.
+RfEllIndices* ell_indices(CompressedTransport& t) { return reinterpret_cast<RfEllIndices*>(t.indices.data()); }
+RfEllWeights* ell_weights(CompressedTransport& t) { return reinterpret_cast<RfEllWeights*>(t.weights.data()); }
+RfCorrespondence* correspondences(std::vector<float>& xy) { return reinterpret_cast<RfCorrespondence*>(xy.data()); }
+
 // The transport accumulator on the HLS tops, its buffers host vectors, the Gray pairs batched RF_GRAY_PAIR_BATCH and
 // the dot frames RF_FRAME_BATCH at a time in one batch buffer, as the device accumulator batches them.
 class HlsAccumulator final : public GraycodeAccumulator {
@@ -185,8 +191,8 @@ class HlsAccumulator final : public GraycodeAccumulator {
     if (pending_ > 0) compress_batch();
     finalize_single(white_.ptr<float>(), black_.ptr<float>(), t_.setup.dot_spacing > 0 ? 1 : 0,
                     t_.setup.projector_size.width, t_.setup.thresholds.noise, t_.flags.data(), t_.pixel_x.data(),
-                    t_.pixel_y.data(), t_.indices.data(), t_.weights.data(), t_.direct_energy.data(),
-                    t_.correspondence.data(), n_);
+                    t_.pixel_y.data(), ell_indices(t_), ell_weights(t_), t_.direct_energy.data(),
+                    correspondences(t_.correspondence), n_);
     return std::move(t_);
   }
 
@@ -201,8 +207,8 @@ class HlsAccumulator final : public GraycodeAccumulator {
   void compress_batch() {
     dot_frames_single(batch_.data(), static_cast<int>(pending_), offsets_.data(), t_.setup.dot_spacing,
                       t_.setup.projector_size.width, t_.setup.projector_size.height, t_.setup.thresholds.noise,
-                      black_.ptr<float>(), t_.flags.data(), t_.pixel_x.data(), t_.pixel_y.data(), t_.indices.data(),
-                      t_.weights.data(), t_.direct_energy.data(), n_);
+                      black_.ptr<float>(), t_.flags.data(), t_.pixel_x.data(), t_.pixel_y.data(), ell_indices(t_),
+                      ell_weights(t_), t_.direct_energy.data(), n_);
     pending_ = 0;
     offsets_.fill(0);
   }
@@ -299,8 +305,8 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
     if (t_.setup.dot_spacing > 0) {  // the rows' centroids to scratch: the phases' correspondences stay
       std::vector<float> centroids(2 * static_cast<std::size_t>(n_));
       finalize_single(white_.ptr<float>(), black_.ptr<float>(), 1, t_.setup.projector_size.width,
-                      t_.setup.thresholds.noise, t_.flags.data(), t_.pixel_x.data(), t_.pixel_y.data(),
-                      t_.indices.data(), t_.weights.data(), t_.direct_energy.data(), centroids.data(), n_);
+                      t_.setup.thresholds.noise, t_.flags.data(), t_.pixel_x.data(), t_.pixel_y.data(), ell_indices(t_),
+                      ell_weights(t_), t_.direct_energy.data(), correspondences(centroids), n_);
     }
     return std::move(t_);
   }
@@ -343,8 +349,8 @@ class HlsPhaseAccumulator final : public TransportAccumulator {
   void add_dots() {
     dot_frames_single(batch_.data(), static_cast<int>(dots_pending_), offsets_.data(), t_.setup.dot_spacing,
                       t_.setup.projector_size.width, t_.setup.projector_size.height, t_.setup.thresholds.noise,
-                      black_.ptr<float>(), t_.flags.data(), t_.pixel_x.data(), t_.pixel_y.data(), t_.indices.data(),
-                      t_.weights.data(), t_.direct_energy.data(), n_);
+                      black_.ptr<float>(), t_.flags.data(), t_.pixel_x.data(), t_.pixel_y.data(), ell_indices(t_),
+                      ell_weights(t_), t_.direct_energy.data(), n_);
     dots_pending_ = 0;
     offsets_.fill(0);
   }
