@@ -8,6 +8,13 @@
 #include "common/frame_samples.h"
 #include "transport/ell_rows.h"
 
+// Vitis HLS aggregates a struct argument of an AXI4 master into one word, padded to the next power of two bits
+// (UG1399, "Examples of Aggregation"): the words equal the host's layout of a pixel's samples and ELL row only when
+// RF_FRAME_BATCH and RF_K are powers of two.
+constexpr bool rf_power_of_two(unsigned long bytes) { return bytes != 0 && (bytes & (bytes - 1)) == 0; }
+static_assert(rf_power_of_two(sizeof(RfFrameSamples)), "the HLS tops need RF_FRAME_BATCH a power of two");
+static_assert(rf_power_of_two(sizeof(RfEllIndices)), "the HLS tops need RF_K a power of two");
+
 extern "C" {
 
 void gray_pairs_single(const RfFrameSamples* frames, int pair_count, const unsigned* pairs, float white_threshold,
