@@ -348,8 +348,8 @@ RF_INLINE void rf_finalize_pixel(unsigned c, float white, float black, int has_d
   if (valid && has_dots == 0 && lit > noise_threshold) {
     row_index.q[0] = (int)(projector_y[c] * (unsigned)projector_width + projector_x[c]);
     row_weight.w[0] = lit;
-    indices[c] = row_index;
-    weights[c] = row_weight;
+    indices[c].q[0] = row_index.q[0];  // the one slot written (a byte-enabled part of the word on a board)
+    weights[c].w[0] = lit;
     energy[c] = lit;
   }
   float sum = 0.0f;
