@@ -1,7 +1,8 @@
 """Generated blocks of the docs: a Markdown file holds a generated table between its markers, checked or written.
 
 The markers are lines of their own, `<!-- NAME: begin ... -->` and `<!-- NAME: end -->`. scripts/fpga_budget.py and
-scripts/fpga_latency.py keep their tables in docs/fpga.md this way (sync()); from the command line, the lines between
+scripts/fpga_latency.py keep their tables in docs/fpga.md this way (add_output_arguments(), output()); from the
+command line, the lines between
 the markers must equal a table file (a test's output, e.g. tests/fpga/hls_access_check.cc's):
 
   docs_table.py --name NAME --table FILE --docs MARKDOWN [--update]
@@ -39,6 +40,31 @@ def sync(docs_path, name, generated, update):
         return None
     return "".join(difflib.unified_diff(found[1].splitlines(True), generated.splitlines(True), "documented",
                                         "generated"))
+
+
+def add_output_arguments(parser, what):
+    """A script's options for its generated `what`: --markdown, --docs FILE, --update-docs FILE, one at most (the
+    group returned, for more)."""
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument("--markdown", action="store_true", help=f"print the {what}")
+    group.add_argument("--docs", help=f"check that this Markdown file holds the {what}")
+    group.add_argument("--update-docs", help=f"write the {what} into this Markdown file")
+    return group
+
+
+def output(args, name, generate, what):
+    """What the options of add_output_arguments ask for, of the block NAME that generate() returns: the exit status
+    (0, or 1 with a diff printed), or None when none of them was given."""
+    if args.markdown:
+        print(generate(), end="")
+        return 0
+    if not (args.update_docs or args.docs):
+        return None
+    diff = sync(args.update_docs or args.docs, name, generate(), bool(args.update_docs))
+    if diff:
+        print(f"{args.docs}: the {what} differ from the generated ones (--update-docs):\n{diff}", end="")
+        return 1
+    return 0
 
 
 def main():

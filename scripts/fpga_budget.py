@@ -441,10 +441,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     add_preset_arguments(parser)
     parser.add_argument("--verbose", action="store_true", help="also the arrays of unsupported presets")
-    output = parser.add_mutually_exclusive_group()
-    output.add_argument("--markdown", action="store_true", help="print docs/fpga.md's budget tables")
-    output.add_argument("--docs", help="check that this Markdown file holds the budget tables")
-    output.add_argument("--update-docs", help="write the budget tables into this Markdown file")
+    output = docs_table.add_output_arguments(parser, "budget tables")
     output.add_argument("--measured", metavar="TABLE", help="check PORTS against the C simulation's access table")
     args = parser.parse_args()
     if args.measured:
@@ -456,16 +453,9 @@ def main():
         return 2
     try:
         presets = budgets(args)
-        if args.markdown:
-            print(markdown(presets), end="")
-            return 0
-        if args.update_docs or args.docs:
-            diff = docs_table.sync(args.update_docs or args.docs, "fpga_budget.py", markdown(presets),
-                                   bool(args.update_docs))
-            if diff:
-                print(f"{args.docs}: the budget tables differ from the generated ones (--update-docs):\n{diff}", end="")
-                return 1
-            return 0
+        written = docs_table.output(args, "fpga_budget.py", lambda: markdown(presets), "budget tables")
+        if written is not None:
+            return written
         problems = report(presets, args.verbose, bool(args.set))
         print(f"fpga_budget.py: {len(presets)} presets: {'ok' if not problems else f'{problems} problem(s)'}",
               file=sys.stderr)

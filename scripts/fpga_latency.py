@@ -1051,10 +1051,7 @@ def main():
     fpga_budget.add_preset_arguments(parser)
     parser.add_argument("--claims", help="the Markdown file with the design II table (default ROOT/docs/fpga.md)")
     parser.add_argument("--verbose", action="store_true", help="every dependence of every loop, with its operators")
-    output = parser.add_mutually_exclusive_group()
-    output.add_argument("--markdown", action="store_true", help="print the generated tables")
-    output.add_argument("--docs", help="check that this Markdown file holds the generated tables")
-    output.add_argument("--update-docs", help="write the generated tables into this Markdown file")
+    docs_table.add_output_arguments(parser, "latency tables")
     args = parser.parse_args()
     ready, scratch = fpga_budget.resolve_preset_arguments(args, "fpga_latency.py")
     if not ready:
@@ -1062,16 +1059,9 @@ def main():
     args.claims = args.claims or os.path.join(args.root, "docs", "fpga.md")
     try:
         vendor_models = models(args)
-        if args.markdown:
-            print(markdown(vendor_models), end="")
-            return 0
-        if args.update_docs or args.docs:
-            diff = docs_table.sync(args.update_docs or args.docs, "fpga_latency.py", markdown(vendor_models),
-                                   bool(args.update_docs))
-            if diff:
-                print(f"{args.docs}: the latency tables differ from the generated ones (--update-docs):\n{diff}", end="")
-                return 1
-            return 0
+        written = docs_table.output(args, "fpga_latency.py", lambda: markdown(vendor_models), "latency tables")
+        if written is not None:
+            return written
         problems = check(vendor_models, args.claims, args.verbose)
         count = sum(len(vm.loops) for vm in vendor_models)
         print(f"fpga_latency.py: {count} pipelined loops: {'ok' if not problems else f'{problems} problem(s)'}",
