@@ -98,14 +98,13 @@ void GrayDecision::add_gray_pair(GrayAxis axis, std::uint32_t mask, const cv::Ma
         const std::size_t c = row + static_cast<std::size_t>(x);
         const float difference = p[x] - inv[x];
         const float margin = std::fabs(difference);
-        if (margin < m.smallest[c]) {
-          m.second[c] = m.smallest[c];
-          m.smallest[c] = margin;
-          m.smallest_signed[c] = difference;
-          m.mask[c] = mask;
-        } else if (margin < m.second[c]) {
-          m.second[c] = margin;
-        }
+        // Selects rather than branches: which pair has the smallest margin is random, so a branch is mispredicted.
+        const float smallest = m.smallest[c];
+        const bool new_smallest = margin < smallest;
+        m.second[c] = new_smallest ? smallest : std::min(margin, m.second[c]);
+        m.smallest[c] = new_smallest ? margin : smallest;
+        m.smallest_signed[c] = new_smallest ? difference : m.smallest_signed[c];
+        m.mask[c] = new_smallest ? mask : m.mask[c];
       }
     }
   });
