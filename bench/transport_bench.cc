@@ -2,7 +2,10 @@
 // standard protocol with an 8 x 8 dot grid), C++ reference and OpenCL, against OpenCV structured_light's
 // GrayCodePattern decoding of the same frames and the host's memory-bandwidth roofline (bench/bench_common.h).
 // Prints the ratios after the runs. Frames are synthetic (a plane seen at 0.8 projector pixels per camera pixel).
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <limits>
 #include <numeric>
 
 #include <benchmark/benchmark.h>
@@ -11,6 +14,8 @@
 #include "bench/opencv_graycode.h"
 #include "host/capture/protocol.h"
 #include "host/cl/device_selection.h"
+#include "host/transport/gray_decision.h"
+#include "host/transport/gray_subpixel.h"
 #include "host/transport/graycode_accumulator.h"
 
 namespace {
@@ -165,12 +170,48 @@ void BM_CompressOpenCL(benchmark::State& state) {
   compress(state, [&] { return transport::make_device_accumulator(setup(), device(), programs(), entry); });
 }
 
+// The host's part of a Gray-code-only capture of the same frames: GrayDecision and GraySubpixel fed every pair, then
+// decide() and refine() on a copy of the decoded transport (one entry per pixel). `refine_seconds`: the fastest
+// refine() of the iterations, the least disturbed by other work on the machine (a compute-bound host stage: no
+// bandwidth counters).
+void BM_GraySubpixel(benchmark::State& state) {
+  const auto& f = frames();
+  transport::TransportSetup gray_only = setup();
+  gray_only.dot_spacing = 0;
+  gray_only.entries_per_pixel = 1;
+  auto accumulator = transport::make_reference_accumulator(gray_only);
+  decode(*accumulator);
+  const transport::CompressedTransport decoded = accumulator->finish();
+  double refine_seconds = std::numeric_limits<double>::infinity();
+  for (auto _ : state) {
+    transport::GrayDecision decision(f.linear[0], f.linear[1]);
+    transport::GraySubpixel subpixel(kCamera);
+    for (std::size_t i = 2; i < f.gray_sequence.size(); i += 2) {
+      const auto& pattern = f.gray_sequence[i];
+      const auto axis = pattern.kind == capture::pattern_kind::kGrayColumn ? transport::GrayAxis::kColumns
+                                                                           : transport::GrayAxis::kRows;
+      decision.add_gray_pair(axis, transport::gray_bit_mask(gray_only, axis, pattern.bit), f.linear[i],
+                             f.linear[i + 1]);
+      subpixel.add_gray_pair(axis, f.linear[i], f.linear[i + 1]);
+    }
+    transport::CompressedTransport transport = decoded;
+    decision.decide(transport);
+    const auto start = std::chrono::steady_clock::now();
+    subpixel.refine(transport);
+    refine_seconds =
+        std::min(refine_seconds, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    benchmark::DoNotOptimize(transport.correspondence.data());
+  }
+  state.counters["refine_seconds"] = refine_seconds;
+}
+
 // Wall-clock rates throughout (the OpenCL runs spend their time in PoCL's threads, not the calling one).
 BENCHMARK(BM_DecodeReference)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
 BENCHMARK(BM_DecodeOpenCL)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
 BENCHMARK(BM_DecodeOpenCV)->Unit(benchmark::kMillisecond)->Iterations(2)->UseRealTime();
 BENCHMARK(BM_CompressReference)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
 BENCHMARK(BM_CompressOpenCL)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
+BENCHMARK(BM_GraySubpixel)->Unit(benchmark::kMillisecond)->Iterations(8)->UseRealTime();
 
 }  // namespace
 
