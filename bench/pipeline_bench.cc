@@ -14,8 +14,9 @@
 // before, in a process that keeps the memory it frees (keep_freed_memory), as a scanner's loop does;
 // BM_FusedScanFromFiles reads the capture's files (simulate's default format, uncompressed TIFF) on the default reader
 // threads and allocates its transport anew, as `rfrecon transport` does (in the same process), and
-// BM_FusedScanFromPngFiles the same frames from a PNG copy of the capture (DIR/capture-png, made once). Counters are
-// medians over the iterations.
+// BM_FusedScanFromPngFiles the same frames from a PNG copy of the capture (DIR/capture-png, made once);
+// BM_Decode*Frames decode either copy's frames on one thread, the PNGs also by cv::imread. Counters are medians over
+// the iterations.
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -40,6 +41,7 @@
 #include "host/capture/manifest.h"
 #include "host/cl/device_selection.h"
 #include "host/core/freed_memory.h"
+#include "host/core/image_file.h"
 #include "host/depth/reconstruct_depth.h"
 #include "host/transport/compute_transport.h"
 #include "host/transport/transport_file.h"
@@ -292,6 +294,28 @@ void scan_files(benchmark::State& state, const fs::path& dir) {
 void BM_FusedScanFromFiles(benchmark::State& state) { scan_files(state, capture_dir()); }
 void BM_FusedScanFromPngFiles(benchmark::State& state) { scan_files(state, png_capture_dir()); }
 
+// Decoding every frame of the capture in `dir` one after another on one thread, as a reader thread does: by
+// decode_image (rfrecon's reads), or by cv::imread (the peer). ms_per_frame: the median over the iterations.
+void decode_frames(benchmark::State& state, const fs::path& dir, bool opencv) {
+  const capture::CaptureManifest frames = manifest(false, dir);
+  const int flags = cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH;
+  std::vector<double> ms_per_frame;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    for (const auto& frame : frames.frames) {
+      const fs::path file = dir / frame.file;
+      const cv::Mat image = opencv ? cv::imread(file.string(), flags) : decode_image(file, flags);
+      benchmark::DoNotOptimize(image.data);
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ms_per_frame.push_back(seconds * 1e3 / static_cast<double>(frames.frames.size()));
+  }
+  state.counters["ms_per_frame"] = median(ms_per_frame);
+}
+void BM_DecodeTiffFrames(benchmark::State& state) { decode_frames(state, capture_dir(), false); }
+void BM_DecodePngFrames(benchmark::State& state) { decode_frames(state, png_capture_dir(), false); }
+void BM_DecodePngFramesOpenCV(benchmark::State& state) { decode_frames(state, png_capture_dir(), true); }
+
 // rfrecon's Gray-code-only triangulation (decode, sub-pixel refinement, triangulation) on the scan's Gray frames, in
 // memory as OpenCV's are.
 void BM_GrayTriangulation(benchmark::State& state) {
@@ -335,6 +359,9 @@ BENCHMARK(BM_GrayTriangulation)->Unit(benchmark::kMillisecond)->Iterations(6)->U
 BENCHMARK(BM_FusedScan)->Unit(benchmark::kMillisecond)->Iterations(6)->UseRealTime();
 BENCHMARK(BM_FusedScanFromFiles)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 BENCHMARK(BM_FusedScanFromPngFiles)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+BENCHMARK(BM_DecodeTiffFrames)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+BENCHMARK(BM_DecodePngFrames)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+BENCHMARK(BM_DecodePngFramesOpenCV)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 
 }  // namespace
 
@@ -410,6 +437,11 @@ int main(int argc, char** argv) {
               reporter.counter("BM_GrayTriangulation", "pipeline_seconds"), opencv,
               ratio(opencv, reporter.counter("BM_GrayTriangulation", "pipeline_seconds")),
               reporter.counter("BM_GrayTriangulation", "decode_speedup_vs_opencv"));
+  const double png_ms = reporter.counter("BM_DecodePngFrames", "ms_per_frame");
+  std::printf("decoding a frame on one thread: TIFF %.2f ms, PNG %.2f ms, OpenCV's imread of the PNG %.2f ms: %.1fx\n",
+              reporter.counter("BM_DecodeTiffFrames", "ms_per_frame"), png_ms,
+              reporter.counter("BM_DecodePngFramesOpenCV", "ms_per_frame"),
+              ratio(reporter.counter("BM_DecodePngFramesOpenCV", "ms_per_frame"), png_ms));
   std::printf("roofline %.2f GB/s: transport %.3f of it on minimal bytes, compression %.3f; integration %.1f Mpx/s\n",
               rfrecon::bench::host_stream_bytes_per_second() / 1e9,
               reporter.counter("BM_FusedScan", "transport_roofline_fraction"),

@@ -12,7 +12,7 @@ packages=(
   ocl-icd-opencl-dev opencl-c-headers opencl-clhpp-headers pocl-opencl-icd clinfo oclgrind
   libeigen3-dev libopencv-dev libopencv-contrib-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libcli11-dev nlohmann-json3-dev libspdlog-dev libhdf5-dev libassimp-dev libtiff-dev libssl-dev
+  libcli11-dev nlohmann-json3-dev libspdlog-dev libhdf5-dev libassimp-dev libtiff-dev libssl-dev libdeflate-dev
   libsdl2-dev libaravis-dev libusb-1.0-0-dev xvfb gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-x
 )
 

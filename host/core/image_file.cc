@@ -1,16 +1,19 @@
-// Checked image reads and writes over cv::imread / cv::imwrite.
+// Checked image reads and writes over cv::imread / cv::imwrite, grey PNGs decoded by host/core/gray_png.h.
 #include "host/core/image_file.h"
 
 #include <algorithm>
 #include <cctype>
 #include <climits>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <opencv2/imgcodecs.hpp>
 
 #include "host/core/errors.h"
+#include "host/core/gray_png.h"
 #include "host/core/image_header.h"
 #include "host/core/limits.h"
 
@@ -53,7 +56,13 @@ void check_image_header(const ImageHeader& header, const std::filesystem::path& 
 }  // namespace
 
 cv::Mat decode_image(const std::filesystem::path& file, int flags) {
-  check_image_header(read_image_header(file), file);
+  const ImageHeader header = read_image_header(file);
+  check_image_header(header, file);
+  // Grey PNGs (camera frames) the fast way where cv::imread would return them unchanged.
+  if (header.format == "PNG" && header.channels == 1 &&
+      (flags == cv::IMREAD_UNCHANGED || flags == (cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH))) {
+    if (std::optional<cv::Mat> image = decode_gray_png(file)) return *std::move(image);
+  }
   cv::Mat image;
   try {
     image = cv::imread(file.string(), flags);

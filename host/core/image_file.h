@@ -23,7 +23,8 @@ void write_image(const std::filesystem::path& file, const cv::Mat& image);
 // FIFO is refused without opening it), a format of read_image_header (PNG, TIFF, JPEG, BMP, PNM), the size its
 // header declares within host/core/limits.h, a file large enough for the data it declares and memory for the
 // decoded pixels. Every failure, the decoder's included, is an InputError naming the file. Never returns an empty
-// image.
+// image. Grey 8- and 16-bit PNGs, read unchanged or as IMREAD_GRAYSCALE | IMREAD_ANYDEPTH, take the faster
+// decode_gray_png (host/core/gray_png.h) to the same pixels.
 cv::Mat decode_image(const std::filesystem::path& file, int flags);
 
 // Reads `file` unchanged and checks that it holds `type` (e.g. CV_32FC3). Throws InputError naming the file when
