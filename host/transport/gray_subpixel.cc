@@ -71,7 +71,7 @@ struct BoundaryPoints {
   std::vector<double> dx;  // camera px from the fitted pixel's centre
   std::vector<double> dy;
   std::vector<double> value;     // projector px, less the fitted pixel's code
-  std::vector<double> exponent;  // -distance^2 / (2 sigma^2)
+  std::vector<double> exponent;  // -distance^2 / (2 sigma^2), as distance^2 * exponent_per_px2
   std::vector<double> weight;    // its exponential
   std::size_t count = 0;         // the points are the first `count` slots
 
@@ -169,7 +169,8 @@ struct Window {
       candidates += cursor.last - cursor.first;
     }
     points.make_room(candidates);
-    const double two_sigma2 = 2.0 * options.weight_sigma_px * options.weight_sigma_px;
+    // A product, not a quotient (2 % of the fit on two cores); equal to it for the default sigma of 1.
+    const double exponent_per_px2 = -0.5 / (options.weight_sigma_px * options.weight_sigma_px);
     const double slope2 = options.max_slope * options.max_slope;
     std::size_t n = 0;
     for (int v = top; v <= bottom; ++v) {
@@ -186,7 +187,7 @@ struct Window {
         points.dx[n] = dx;
         points.dy[n] = dy;
         points.value[n] = offset;
-        points.exponent[n] = -d2 / two_sigma2;
+        points.exponent[n] = d2 * exponent_per_px2;
         n += inside & same_surface ? 1 : 0;
       }
     }

@@ -18,7 +18,9 @@ struct GraySubpixelOptions {
   double weight_sigma_px = 1.0;  // with weight exp(-d^2 / (2 sigma^2)) at distance d camera px
   int min_points = 8;            // a fit needs at least this many boundary points
   double min_spread_px2 = 0.1;   // and their positions' weighted covariance eigenvalues at least this
-  double max_slope = 1.5;  // points farther than 1 + max_slope * d projector px from the pixel's position are dropped
+  // Points farther than 1 + max_slope * d projector px from the pixel's position are dropped; at least 0 (the
+  // window compares squares).
+  double max_slope = 1.5;
   double max_residual_px = 0.5;  // the plane is fitted again without points farther than this from it
   double max_code_offset_px =
       1.0;  // and its value this close to the pixel's decoded position (host/transport/gray_decision.h)
