@@ -4,11 +4,13 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <libdeflate.h>
+
+#include "host/core/limits.h"
 
 namespace rfrecon {
 
@@ -81,43 +83,23 @@ void swap_bytes(cv::Mat& image, int row) {
   for (int x = 0; x < image.cols; ++x) samples[x] = static_cast<std::uint16_t>(__builtin_bswap16(samples[x]));
 }
 
-// One decode's buffers.
-struct Buffers {
-  std::vector<unsigned char> file;
-  std::vector<unsigned char> compressed;
-  std::vector<unsigned char> filtered;
-  std::vector<unsigned char> zeros;
-  std::unique_ptr<libdeflate_decompressor, decltype(&libdeflate_free_decompressor)> inflater{
-      libdeflate_alloc_decompressor(), &libdeflate_free_decompressor};
-};
-
-bool read_whole(const std::filesystem::path& file, std::vector<unsigned char>& bytes) {
-  std::ifstream in(file, std::ios::binary | std::ios::ate);
-  if (!in) return false;
-  const std::streamsize size = in.tellg();
-  if (size < 0) return false;
-  bytes.resize(static_cast<std::size_t>(size));
-  in.seekg(0);
-  return static_cast<bool>(in.read(reinterpret_cast<char*>(bytes.data()), size));
-}
-
 }  // namespace
 
 std::optional<cv::Mat> decode_gray_png(const std::filesystem::path& file) {
-  Buffers buffers;
-  std::vector<unsigned char>& bytes = buffers.file;
-  if (buffers.inflater == nullptr || !read_whole(file, bytes)) return std::nullopt;
+  const std::string text = read_input_file(file, kMaxGrayPngBytes, "a grey PNG");
+  const auto* bytes = reinterpret_cast<const unsigned char*>(text.data());
+  const std::size_t size = text.size();
   constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  if (bytes.size() < 8 || std::memcmp(bytes.data(), kSignature, 8) != 0) return std::nullopt;
+  if (size < 8 || std::memcmp(bytes, kSignature, 8) != 0) return std::nullopt;
 
   std::uint32_t width = 0, height = 0;
   int bit_depth = 0;
-  buffers.compressed.clear();
+  std::vector<unsigned char> compressed;
   bool header = false, data_ended = false, end = false;
   for (std::size_t at = 8; !end;) {
-    if (bytes.size() - at < 12) return std::nullopt;
+    if (size - at < 12) return std::nullopt;
     const std::uint32_t length = big_endian_32(&bytes[at]);
-    if (length > bytes.size() - at - 12) return std::nullopt;
+    if (length > size - at - 12) return std::nullopt;
     const unsigned char* type = &bytes[at + 4];
     const unsigned char* data = type + 4;
     const bool critical = (type[0] & 0x20) == 0;
@@ -135,35 +117,38 @@ std::optional<cv::Mat> decode_gray_png(const std::filesystem::path& file) {
       header = true;
     } else if (is_type(type, "IDAT")) {
       if (data_ended) return std::nullopt;  // image data must be consecutive chunks
-      buffers.compressed.insert(buffers.compressed.end(), data, data + length);
+      compressed.insert(compressed.end(), data, data + length);
     } else if (is_type(type, "IEND")) {
       end = true;
     } else if (critical || is_type(type, "tRNS") || is_type(type, "eXIf")) {
       return std::nullopt;  // a palette or an unknown critical chunk; transparency; an orientation cv::imread applies
     } else {
-      data_ended = !buffers.compressed.empty();
+      data_ended = !compressed.empty();
     }
     at += 12 + std::size_t{length};
   }
-  if (buffers.compressed.empty()) return std::nullopt;
+  if (compressed.empty()) return std::nullopt;
 
   const std::size_t bpp = static_cast<std::size_t>(bit_depth) / 8;
   const std::size_t stride = width * bpp;
   const std::size_t filtered_bytes = height * (stride + 1);
   constexpr std::size_t kDeflateMaxRatio = 1032;  // no stream inflates further: refused before allocating for it
-  if (filtered_bytes / kDeflateMaxRatio > buffers.compressed.size()) return std::nullopt;
-  buffers.filtered.resize(filtered_bytes);
+  if (filtered_bytes / kDeflateMaxRatio > compressed.size()) return std::nullopt;
+  const std::unique_ptr<libdeflate_decompressor, decltype(&libdeflate_free_decompressor)> inflater(
+      libdeflate_alloc_decompressor(), &libdeflate_free_decompressor);
+  std::vector<unsigned char> filtered(filtered_bytes);
   std::size_t inflated = 0;
-  if (libdeflate_zlib_decompress(buffers.inflater.get(), buffers.compressed.data(), buffers.compressed.size(),
-                                 buffers.filtered.data(), filtered_bytes, &inflated) != LIBDEFLATE_SUCCESS ||
+  if (inflater == nullptr ||
+      libdeflate_zlib_decompress(inflater.get(), compressed.data(), compressed.size(), filtered.data(), filtered_bytes,
+                                 &inflated) != LIBDEFLATE_SUCCESS ||
       inflated != filtered_bytes) {
     return std::nullopt;
   }
-  buffers.zeros.assign(stride, 0);
+  const std::vector<unsigned char> zeros(stride, 0);  // the row above the first
   cv::Mat image(static_cast<int>(height), static_cast<int>(width), bit_depth == 16 ? CV_16UC1 : CV_8UC1);
   for (int y = 0; y < image.rows; ++y) {
-    const unsigned char* row = &buffers.filtered[static_cast<std::size_t>(y) * (stride + 1)];
-    const unsigned char* above = y > 0 ? image.ptr<unsigned char>(y - 1) : buffers.zeros.data();
+    const unsigned char* row = &filtered[static_cast<std::size_t>(y) * (stride + 1)];
+    const unsigned char* above = y > 0 ? image.ptr<unsigned char>(y - 1) : zeros.data();
     if (!unfilter_row(row[0], row + 1, above, image.ptr<unsigned char>(y), stride, bpp)) return std::nullopt;
     if (bpp == 2 && y > 0) swap_bytes(image, y - 1);  // big-endian samples, once the next row has used them
   }

@@ -13,7 +13,8 @@ namespace rfrecon {
 // docs/performance.md): libdeflate inflates the whole image data at once, the rows are unfiltered here. std::nullopt
 // where the file is anything else (a colour, palette, alpha, transparency, sub-byte or interlaced PNG, one with EXIF
 // orientation) or not a well-formed PNG (a critical chunk's CRC, a stream that does not inflate to the declared rows,
-// an unknown filter): those are left to cv::imread, which decodes or refuses them as before.
+// an unknown filter): those are left to cv::imread, which decodes or refuses them as before. Throws InputError naming
+// the file where it cannot be read or is over kMaxGrayPngBytes (host/core/limits.h), read whole.
 std::optional<cv::Mat> decode_gray_png(const std::filesystem::path& file);
 
 }  // namespace rfrecon

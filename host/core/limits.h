@@ -26,6 +26,9 @@ void check_memory(double bytes, const std::string& what);
 inline constexpr std::size_t kMaxJsonBytes = std::size_t{16} << 20;  // 16 MiB: a corners.json is under 1 MB
 inline constexpr int kMaxNestingDepth = 64;                          // arrays and objects inside one another
 
+// A grey PNG is read whole to be decoded (host/core/gray_png.h): twice the largest 16-bit image stored uncompressed.
+inline constexpr std::size_t kMaxGrayPngBytes = std::size_t{4} * kMaxImagePixels;
+
 // The bytes of `file`, read only once check_input_file passed (no open that could block) and refused with an
 // InputError "FILE: N bytes, over the limit of M for WHAT (docs/formats.md#limits)" when larger than `max_bytes`.
 std::string read_input_file(const std::filesystem::path& file, std::size_t max_bytes, const std::string& what);
