@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
 
 namespace rfrecon::transport {
@@ -80,33 +81,51 @@ void GrayDecision::add_gray_pair(GrayAxis axis, std::uint32_t mask, const cv::Ma
   check_frame(pattern, white_.size());
   check_frame(inverse, white_.size());
   Margins& m = margins_[axis == GrayAxis::kColumns ? 0 : 1];
-  const int width = white_.cols;
+  const std::size_t width = static_cast<std::size_t>(white_.cols);
+  const float* p = pattern.ptr<float>();
+  const float* inv = inverse.ptr<float>();
+  const float* w = white_.ptr<float>();
+  const float* b = black_.ptr<float>();
+  float* sum = sum_.ptr<float>();
+  float* squares = sum_squares_.ptr<float>();
+  // Selects rather than branches: which pair has the smallest margin is random, so a branch is mispredicted. Every
+  // image is continuous, so a range of rows is one run of pixels: a lane's width at a time, then the rest one by one.
+  const auto update = [&](std::size_t c) {
+    const float residual = p[c] + inv[c] - w[c] - b[c];
+    sum[c] += residual;
+    squares[c] += residual * residual;
+    const float difference = p[c] - inv[c];
+    const float margin = std::fabs(difference);
+    const float smallest = m.smallest[c];
+    const bool new_smallest = margin < smallest;
+    m.second[c] = new_smallest ? smallest : std::min(margin, m.second[c]);
+    m.smallest[c] = new_smallest ? margin : smallest;
+    m.smallest_signed[c] = new_smallest ? difference : m.smallest_signed[c];
+    m.mask[c] = new_smallest ? mask : m.mask[c];
+  };
+  const cv::v_uint32x4 mask_lanes = cv::v_setall_u32(mask);
   // Rows in parallel: each pixel's state is its own.
   cv::parallel_for_(cv::Range(0, white_.rows), [&](const cv::Range& rows) {
-    for (int y = rows.start; y < rows.end; ++y) {
-      const float* p = pattern.ptr<float>(y);
-      const float* inv = inverse.ptr<float>(y);
-      const float* w = white_.ptr<float>(y);
-      const float* b = black_.ptr<float>(y);
-      float* sum = sum_.ptr<float>(y);
-      float* squares = sum_squares_.ptr<float>(y);
-      const std::size_t row = static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
-      for (int x = 0; x < width; ++x) {
-        const float residual = p[x] + inv[x] - w[x] - b[x];
-        sum[x] += residual;
-        squares[x] += residual * residual;
-        const std::size_t c = row + static_cast<std::size_t>(x);
-        const float difference = p[x] - inv[x];
-        const float margin = std::fabs(difference);
-        // Selects rather than branches: which pair has the smallest margin is random, so a branch is mispredicted.
-        const float smallest = m.smallest[c];
-        const bool new_smallest = margin < smallest;
-        m.second[c] = new_smallest ? smallest : std::min(margin, m.second[c]);
-        m.smallest[c] = new_smallest ? margin : smallest;
-        m.smallest_signed[c] = new_smallest ? difference : m.smallest_signed[c];
-        m.mask[c] = new_smallest ? mask : m.mask[c];
-      }
+    const std::size_t end = static_cast<std::size_t>(rows.end) * width;
+    std::size_t c = static_cast<std::size_t>(rows.start) * width;
+    for (; c + cv::v_float32x4::nlanes <= end; c += cv::v_float32x4::nlanes) {
+      const cv::v_float32x4 pattern_lanes = cv::v_load(p + c), inverse_lanes = cv::v_load(inv + c);
+      const cv::v_float32x4 residual = pattern_lanes + inverse_lanes - cv::v_load(w + c) - cv::v_load(b + c);
+      cv::v_store(sum + c, cv::v_load(sum + c) + residual);
+      cv::v_store(squares + c, cv::v_load(squares + c) + residual * residual);
+      const cv::v_float32x4 difference = pattern_lanes - inverse_lanes;
+      const cv::v_float32x4 margin = cv::v_abs(difference);
+      const cv::v_float32x4 smallest = cv::v_load(m.smallest.data() + c);
+      const cv::v_float32x4 new_smallest = margin < smallest;
+      cv::v_store(m.second.data() + c,
+                  cv::v_select(new_smallest, smallest, cv::v_min(margin, cv::v_load(m.second.data() + c))));
+      cv::v_store(m.smallest.data() + c, cv::v_select(new_smallest, margin, smallest));
+      cv::v_store(m.smallest_signed.data() + c,
+                  cv::v_select(new_smallest, difference, cv::v_load(m.smallest_signed.data() + c)));
+      cv::v_store(m.mask.data() + c,
+                  cv::v_select(cv::v_reinterpret_as_u32(new_smallest), mask_lanes, cv::v_load(m.mask.data() + c)));
     }
+    for (; c < end; ++c) update(c);
   });
   ++pairs_;
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <opencv2/core/hal/hal.hpp>
+#include <opencv2/core/hal/intrin.hpp>
 
 namespace rfrecon::transport {
 
@@ -25,27 +26,39 @@ const float* pixels(const cv::Mat& frame, cv::Size camera_size) {
   return frame.ptr<float>();
 }
 
+// The fits work four points at a time in OpenCV's 128-bit universal intrinsics (SSE2 on x86-64, NEON on ARM), in
+// float: offsets of a few camera px and values of a few projector px from the pixel's own lose about 1e-7 px, far
+// below the float correspondence's own step (6e-5 px at 1000 px). Each sum over a window is four partial sums, added
+// in a fixed order at the end.
+constexpr std::size_t kLanes = cv::v_float32x4::nlanes;
+
 // The usable boundary points of one axis code, row by row: where a pixel's code and its right (or lower) neighbour's
 // are one apart, the boundary between them (c + 0.5 between codes c and c + 1, projector px) at the crossing of the
 // bit that differs. Only the points that exist are kept, in the order of their pair's first pixel, right before down,
-// so a window reads no empty pair (the empty ones' branches cost more than the fits). Each point's camera position is
-// kept whole (exact in double), so a window takes its offsets with one subtraction per axis.
+// so a window reads no empty pair (the empty ones' branches cost more than the fits). A point's camera position is its
+// pair's first pixel plus the crossing's fraction along x (right) or y (down), so a window's offsets are small
+// integers plus a fraction, exact in float wherever the image is.
 struct BoundaryRows {
-  std::vector<std::size_t> start;  // row v's points are [start[v], start[v + 1])
-  std::vector<std::int32_t> key;   // 2 u + direction (0: right, 1: down) of the pair's first pixel (u, v)
-  std::vector<double> x;           // camera px of the boundary: u + t (right) or u (down), t the crossing's fraction
-  std::vector<double> y;           // v (right) or v + t (down)
-  std::vector<float> value;        // projector px
+  int width = 0;
+  // Row v's points whose pair's first pixel is u or right of it start at first_at[v (width + 1) + u]; u = width: the
+  // row's end. A window finds each row's candidates with two reads, whatever their number.
+  std::vector<std::uint32_t> first_at;
+  std::vector<std::int32_t> u;    // the pair's first pixel (u, v)
+  std::vector<float> x_fraction;  // camera px right of u: the crossing's fraction t (right) or 0 (down)
+  std::vector<float> y_fraction;  // camera px below v: 0 (right) or t (down)
+  std::vector<float> value;       // projector px
 
   BoundaryRows(const std::array<std::vector<float>, 2>& crossing, const std::vector<std::uint32_t>& code,
-               const std::vector<std::uint8_t>& flags, cv::Size size) {
-    start.reserve(static_cast<std::size_t>(size.height) + 1);
+               const std::vector<std::uint8_t>& flags, cv::Size size)
+      : width(size.width) {
+    first_at.reserve(static_cast<std::size_t>(size.height) * (size.width + 1));
     for (int v = 0; v < size.height; ++v) {
-      start.push_back(key.size());
-      for (int u = 0; u < size.width; ++u) {
+      for (int pixel = 0; pixel <= size.width; ++pixel) {
+        first_at.push_back(static_cast<std::uint32_t>(u.size()));
+        if (pixel == size.width) break;
         for (int direction = 0; direction < 2; ++direction) {
-          if (direction == 0 ? u + 1 >= size.width : v + 1 >= size.height) continue;
-          const std::size_t c = static_cast<std::size_t>(v) * size.width + u;
+          if (direction == 0 ? pixel + 1 >= size.width : v + 1 >= size.height) continue;
+          const std::size_t c = static_cast<std::size_t>(v) * size.width + pixel;
           const std::size_t next = c + (direction == 0 ? 1 : static_cast<std::size_t>(size.width));
           const float crossed = crossing[direction][c];
           if (std::isnan(crossed) || (flags[c] & kFlagValid) == 0 || (flags[next] & kFlagValid) == 0) continue;
@@ -53,31 +66,41 @@ struct BoundaryRows {
           const std::uint32_t hi = std::max(code[c], code[next]);
           // Codes one apart differ in exactly one Gray bit: the one whose crossing was kept.
           if (hi - lo != 1) continue;
-          key.push_back(2 * u + direction);
-          x.push_back(direction == 0 ? u + static_cast<double>(crossed) : u);
-          y.push_back(direction == 0 ? v : v + static_cast<double>(crossed));
+          u.push_back(pixel);
+          x_fraction.push_back(direction == 0 ? crossed : 0.0f);
+          y_fraction.push_back(direction == 0 ? 0.0f : crossed);
           value.push_back(static_cast<float>(hi) - 0.5f);
         }
       }
     }
-    start.push_back(key.size());
+    // Whole lanes read from any row's first point stay inside the arrays.
+    u.resize(u.size() + kLanes, 0);
+    for (auto* field : {&x_fraction, &y_fraction, &value}) field->resize(field->size() + kLanes, 0.0f);
+  }
+
+  // Row v's points whose pair's first pixel is in [from, to].
+  std::pair<std::size_t, std::size_t> points_of(int v, int from, int to) const {
+    const std::size_t row = static_cast<std::size_t>(v) * (width + 1);
+    return {first_at[row + from], first_at[row + to + 1]};
   }
 };
 
-// The boundary points of one window, field by field (a loop that builds whole structs through the stack stalled on
-// store forwarding). The fields have a slot for each candidate: each is written to the next free slot, which only a
-// point that passes the window's tests takes, so the loop has no branch to mispredict.
+// The candidate boundary points of one window, field by field in slots padded to whole lanes. A point outside the
+// window or across an occlusion edge keeps its slot with `in` = 0, so no loop over the slots has a branch.
 struct BoundaryPoints {
-  std::vector<double> dx;  // camera px from the fitted pixel's centre
-  std::vector<double> dy;
-  std::vector<double> value;     // projector px, less the fitted pixel's code
-  std::vector<double> exponent;  // -distance^2 / (2 sigma^2), as distance^2 * exponent_per_px2
-  std::vector<double> weight;    // its exponential
-  std::size_t count = 0;         // the points are the first `count` slots
+  std::vector<float> dx;         // camera px from the fitted pixel's centre, along x
+  std::vector<float> dy;         // and along y
+  std::vector<float> value;      // projector px, less the fitted pixel's decoded position
+  std::vector<float> exponent;   // -distance^2 / (2 sigma^2)
+  std::vector<float> weight;     // its exponential
+  std::vector<float> in;         // 1 where the point is fitted, else 0
+  std::vector<float> explained;  // 1 where it is also within max_residual_px of the first plane, else 0
+  std::size_t slots = 0;         // candidates, rounded up to whole lanes
 
   void make_room(std::size_t candidates) {
-    if (dx.size() >= candidates) return;
-    for (auto* field : {&dx, &dy, &value, &exponent, &weight}) field->resize(candidates);
+    const std::size_t padded = (candidates + kLanes - 1) / kLanes * kLanes;
+    if (dx.size() >= padded) return;
+    for (auto* field : {&dx, &dy, &value, &exponent, &weight, &in, &explained}) field->resize(padded);
   }
 };
 
@@ -86,32 +109,58 @@ struct Plane {
   double a = 0.0;
   double b = 0.0;
   double c = 0.0;
-  double at(double dx, double dy) const { return a + b * dx + c * dy; }
 };
 
-// Weighted sums of a set of points, added one at a time, for the plane through them. The values are relative to the
-// pixel's code (a few px), so the moments about the means lose nothing to cancellation.
+// Weighted sums of a window's points for the plane through them, each in kLanes partial sums. The values are
+// relative to the pixel's decoded position (a few px), so the moments about the means lose nothing to cancellation.
 struct Moments {
   int count = 0;
   double w = 0, x = 0, y = 0, v = 0, xx = 0, xy = 0, yy = 0, xv = 0, yv = 0;
   double lo = std::numeric_limits<double>::infinity(), hi = -std::numeric_limits<double>::infinity();
 
-  // Adds point i, or nothing where `in` is false: a weight of 0 leaves every sum as it was, without a branch.
-  void add(const BoundaryPoints& points, std::size_t i, bool in = true) {
-    const double weight = in ? points.weight[i] : 0.0, dx = points.dx[i], dy = points.dy[i], value = points.value[i];
-    count += in ? 1 : 0;
-    const double wx = weight * dx, wy = weight * dy;
-    w += weight;
-    x += wx;
-    y += wy;
-    v += weight * value;
-    xx += wx * dx;
-    xy += wx * dy;
-    yy += wy * dy;
-    xv += wx * value;
-    yv += wy * value;
-    lo = std::min(lo, in ? value : std::numeric_limits<double>::infinity());
-    hi = std::max(hi, in ? value : -std::numeric_limits<double>::infinity());
+  // The points whose `mask` is 1 (the window's `in`, or a mask of fewer).
+  Moments(const BoundaryPoints& points, const float* mask) {
+    const cv::v_float32x4 zero = cv::v_setzero_f32(), inf = cv::v_setall_f32(std::numeric_limits<float>::infinity());
+    cv::v_float32x4 n = zero, sw = zero, sx = zero, sy = zero, sv = zero, sxx = zero, sxy = zero, syy = zero,
+                    sxv = zero, syv = zero, slo = inf, shi = zero - inf;
+    for (std::size_t i = 0; i < points.slots; i += kLanes) {
+      const cv::v_float32x4 in = cv::v_load(mask + i), weight = cv::v_load(points.weight.data() + i) * in;
+      const cv::v_float32x4 dx = cv::v_load(points.dx.data() + i), dy = cv::v_load(points.dy.data() + i);
+      const cv::v_float32x4 value = cv::v_load(points.value.data() + i);
+      const cv::v_float32x4 wx = weight * dx, wy = weight * dy;
+      const cv::v_float32x4 fitted = in > zero;
+      n += in;
+      sw += weight;
+      sx += wx;
+      sy += wy;
+      sv += weight * value;
+      sxx += wx * dx;
+      sxy += wx * dy;
+      syy += wy * dy;
+      sxv += wx * value;
+      syv += wy * value;
+      slo = cv::v_min(slo, cv::v_select(fitted, value, inf));
+      shi = cv::v_max(shi, cv::v_select(fitted, value, zero - inf));
+    }
+    const auto total = [](const cv::v_float32x4& lanes) {
+      std::array<float, kLanes> stored{};
+      cv::v_store(stored.data(), lanes);
+      double sum = 0.0;
+      for (const float lane : stored) sum += lane;
+      return sum;
+    };
+    count = static_cast<int>(total(n));
+    w = total(sw);
+    x = total(sx);
+    y = total(sy);
+    v = total(sv);
+    xx = total(sxx);
+    xy = total(sxy);
+    yy = total(syy);
+    xv = total(sxv);
+    yv = total(syv);
+    lo = cv::v_reduce_min(slo);
+    hi = cv::v_reduce_max(shi);
   }
 
   // The weighted least-squares plane, when there are enough points, with two values at least, spread in both
@@ -132,13 +181,6 @@ struct Moments {
   }
 };
 
-// Where one window row's candidates lie in its BoundaryRows row: [first, last). Both only move right as the window
-// does along a row of pixels.
-struct RowCursor {
-  std::size_t first = 0;
-  std::size_t last = 0;
-};
-
 // The boundary points of one axis code around a camera pixel.
 struct Window {
   const BoundaryRows& rows;
@@ -147,52 +189,55 @@ struct Window {
 
   // Points within radius_px (in x and y) of pixel (x, y) whose value lies within 1 + max_slope * distance of the
   // pixel's decoded position `own` (the others belong to another surface, across an occlusion edge), their values less
-  // `own`, weighted by distance. `cursors[i]` are window row i's candidates: pixels of one row are gathered left to
-  // right, so they are found by moving the cursors on. The slope test compares squares, so no point takes a square
-  // root. The weights come in a loop of their own: a call to exp among the other arithmetic made the compiler keep
-  // every other value in memory around it.
-  void gather(int x, int y, double own, std::vector<RowCursor>& cursors, BoundaryPoints& points) const {
+  // `own`, weighted by distance. Each row's candidates are tested a lane's width at a time, the weights all at once
+  // after them; the slope test compares squares, so no point takes a square root.
+  void gather(int x, int y, float own, BoundaryPoints& points) const {
     const int r = options.radius_px;
     // Pairs start at most one pixel left of or above the window, where their crossing may lie inside it.
     const int top = std::max(y - r - 1, 0);
     const int bottom = std::min(y + r, size.height - 1);
-    const std::int32_t lowest_key = 2 * std::max(x - r - 1, 0);
-    const std::int32_t end_key = 2 * (std::min(x + r, size.width - 1) + 1);
+    const int left = std::max(x - r - 1, 0);
+    const int right = std::min(x + r, size.width - 1);
     std::size_t candidates = 0;
     for (int v = top; v <= bottom; ++v) {
-      RowCursor& cursor = cursors[static_cast<std::size_t>(v - top)];
-      const std::size_t end = rows.start[static_cast<std::size_t>(v) + 1];
-      cursor.first = std::max(cursor.first, rows.start[static_cast<std::size_t>(v)]);
-      while (cursor.first < end && rows.key[cursor.first] < lowest_key) ++cursor.first;
-      cursor.last = std::max(cursor.last, cursor.first);
-      while (cursor.last < end && rows.key[cursor.last] < end_key) ++cursor.last;
-      candidates += cursor.last - cursor.first;
+      const auto [first, last] = rows.points_of(v, left, right);
+      candidates += last - first;
     }
-    points.make_room(candidates);
-    // A product, not a quotient (2 % of the fit on two cores); equal to it for the default sigma of 1.
-    const double exponent_per_px2 = -0.5 / (options.weight_sigma_px * options.weight_sigma_px);
-    const double slope2 = options.max_slope * options.max_slope;
+    points.make_room(candidates + kLanes);
+    const cv::v_float32x4 zero = cv::v_setzero_f32(), one = cv::v_setall_f32(1.0f);
+    const cv::v_float32x4 radius = cv::v_setall_f32(static_cast<float>(r));
+    const cv::v_float32x4 exponent_per_px2 =
+        cv::v_setall_f32(static_cast<float>(-0.5 / (options.weight_sigma_px * options.weight_sigma_px)));
+    const cv::v_float32x4 slope2 = cv::v_setall_f32(static_cast<float>(options.max_slope * options.max_slope));
+    const cv::v_float32x4 own_lanes = cv::v_setall_f32(own);
+    const cv::v_int32x4 x_lanes = cv::v_setall_s32(x);
     std::size_t n = 0;
     for (int v = top; v <= bottom; ++v) {
-      const RowCursor& cursor = cursors[static_cast<std::size_t>(v - top)];
-      for (std::size_t k = cursor.first; k < cursor.last; ++k) {
-        const double dx = rows.x[k] - x;
-        const double dy = rows.y[k] - y;
-        const double d2 = dx * dx + dy * dy;
-        const double offset = rows.value[k] - own;
-        const double excess = std::fabs(offset) - 1.0;  // over the 1 px every point is allowed
-        // Bitwise: both sides are cheap, and a branch on them would be mispredicted.
-        const bool inside = (std::fabs(dx) <= r) & (std::fabs(dy) <= r);
-        const bool same_surface = (excess <= 0.0) | (excess * excess <= slope2 * d2);
-        points.dx[n] = dx;
-        points.dy[n] = dy;
-        points.value[n] = offset;
-        points.exponent[n] = d2 * exponent_per_px2;
-        n += inside & same_surface ? 1 : 0;
+      const auto [first, last] = rows.points_of(v, left, right);
+      const cv::v_float32x4 row_dy = cv::v_setall_f32(static_cast<float>(v - y));
+      // Whole lanes: the slots past this row's are overwritten by the next row's or the padding.
+      for (std::size_t k = first, slot = n; k < last; k += kLanes, slot += kLanes) {
+        const cv::v_float32x4 dx =
+            cv::v_cvt_f32(cv::v_load(rows.u.data() + k) - x_lanes) + cv::v_load(rows.x_fraction.data() + k);
+        const cv::v_float32x4 dy = row_dy + cv::v_load(rows.y_fraction.data() + k);
+        const cv::v_float32x4 offset = cv::v_load(rows.value.data() + k) - own_lanes;
+        const cv::v_float32x4 d2 = dx * dx + dy * dy;
+        const cv::v_float32x4 excess = cv::v_abs(offset) - one;  // over the 1 px every point is allowed
+        const cv::v_float32x4 inside = (cv::v_abs(dx) <= radius) & (cv::v_abs(dy) <= radius);
+        const cv::v_float32x4 same_surface = (excess <= zero) | (excess * excess <= slope2 * d2);
+        cv::v_store(points.dx.data() + slot, dx);
+        cv::v_store(points.dy.data() + slot, dy);
+        cv::v_store(points.value.data() + slot, offset);
+        cv::v_store(points.exponent.data() + slot, d2 * exponent_per_px2);
+        cv::v_store(points.in.data() + slot, cv::v_select(inside & same_surface, one, zero));
       }
+      n += last - first;
     }
-    points.count = n;
-    cv::hal::exp64f(points.exponent.data(), points.weight.data(), static_cast<int>(n));
+    points.slots = (n + kLanes - 1) / kLanes * kLanes;
+    for (std::size_t k = n; k < points.slots; ++k) {  // padding: fitted by no plane
+      points.dx[k] = points.dy[k] = points.value[k] = points.exponent[k] = points.in[k] = 0.0f;
+    }
+    cv::hal::exp32f(points.exponent.data(), points.weight.data(), static_cast<int>(points.slots));
   }
 };
 
@@ -210,21 +255,35 @@ void GraySubpixel::add_gray_pair(GrayAxis axis, const cv::Mat& pattern, const cv
   const float* inv = pixels(inverse, camera_size_);
   auto& crossing = crossing_[axis == GrayAxis::kColumns ? 0 : 1];
   const int width = camera_size_.width;
-  // pattern - inverse relative to pattern + inverse: the pixels' reflectances cancel from the crossing position.
-  const auto contrast = [&](std::size_t c) { return (p[c] - inv[c]) / std::max(p[c] + inv[c], 1e-6f); };
+  // pattern - inverse relative to pattern + inverse: the pixels' reflectances cancel from the crossing position. The
+  // decoders' bit is set where pattern > inverse; where it flips between pixel c and the next, the crossing lies at
+  // the fraction d0 / (d0 - d1) of the way. Four pixels at a time, every fraction computed and kept only where the bit
+  // flips: where it does is not predictable, so a branch would be mispredicted.
+  const cv::v_float32x4 least = cv::v_setall_f32(1e-6f);
+  const auto contrast = [&](std::size_t c) {
+    const cv::v_float32x4 pv = cv::v_load(p + c), iv = cv::v_load(inv + c);
+    return std::pair{pv > iv, (pv - iv) / cv::v_max(pv + iv, least)};
+  };
+  const auto contrast_of = [&](std::size_t c) { return (p[c] - inv[c]) / std::max(p[c] + inv[c], 1e-6f); };
   // Rows in parallel: each pixel's crossings are its own.
   cv::parallel_for_(cv::Range(0, camera_size_.height), [&](const cv::Range& rows) {
     for (int direction = 0; direction < 2; ++direction) {
       const std::size_t step = direction == 0 ? 1 : static_cast<std::size_t>(width);
+      float* crossed = crossing[direction].data();
       for (int y = rows.start; y < std::min(rows.end, camera_size_.height - direction); ++y) {
-        for (int x = 0; x < width - (1 - direction); ++x) {
-          const std::size_t c = static_cast<std::size_t>(y) * width + x;
-          const std::size_t next = c + step;
-          // The decoders' bit: set where pattern > inverse.
-          if ((p[c] > inv[c]) == (p[next] > inv[next])) continue;
-          const float d0 = contrast(c);
-          const float d1 = contrast(next);
-          crossing[direction][c] = d0 / (d0 - d1);
+        const std::size_t row = static_cast<std::size_t>(y) * width;
+        const std::size_t end = row + width - (1 - direction);
+        std::size_t c = row;
+        for (; c + kLanes <= end; c += kLanes) {
+          const auto [bit, d0] = contrast(c);
+          const auto [next_bit, d1] = contrast(c + step);
+          const cv::v_float32x4 flips = bit ^ next_bit;
+          cv::v_store(crossed + c, cv::v_select(flips, d0 / (d0 - d1), cv::v_load(crossed + c)));
+        }
+        for (; c < end; ++c) {
+          if ((p[c] > inv[c]) == (p[c + step] > inv[c + step])) continue;
+          const float d0 = contrast_of(c);
+          crossed[c] = d0 / (d0 - contrast_of(c + step));
         }
       }
     }
@@ -243,29 +302,35 @@ void GraySubpixel::refine(CompressedTransport& transport) const {
     // Rows in parallel: each pixel's fit reads the boundaries and writes only its own correspondence.
     cv::parallel_for_(cv::Range(0, camera_size_.height), [&](const cv::Range& rows) {
       BoundaryPoints points;
-      std::vector<RowCursor> cursors;
       for (int y = rows.start; y < rows.end; ++y) {
-        cursors.assign(2 * static_cast<std::size_t>(options_.radius_px) + 2, RowCursor{});
         for (int x = 0; x < width; ++x) {
           const std::size_t c = static_cast<std::size_t>(y) * width + x;
           float& out = transport.correspondence[2 * c + axis];
           if ((transport.flags[c] & kFlagValid) == 0 || std::isnan(out)) continue;
-          const double own = out;  // the decision's code, or a position between two adjacent codes
-          window.gather(x, y, own, cursors, points);
-          Moments all;
-          for (std::size_t i = 0; i < points.count; ++i) all.add(points, i);
+          const float own = out;  // the decision's code, or a position between two adjacent codes
+          window.gather(x, y, own, points);
+          const Moments all(points, points.in.data());
           const std::optional<Plane> first = all.plane(options_);
           if (!first) continue;
-          const auto explains = [&](std::size_t i) {
-            return std::fabs(first->at(points.dx[i], points.dy[i]) - points.value[i]) <= options_.max_residual_px;
-          };
-          int explained_count = 0;
-          for (std::size_t i = 0; i < points.count; ++i) explained_count += explains(i) ? 1 : 0;
+          // The points the first plane explains, among those it was fitted to.
+          const cv::v_float32x4 a = cv::v_setall_f32(static_cast<float>(first->a));
+          const cv::v_float32x4 b = cv::v_setall_f32(static_cast<float>(first->b));
+          const cv::v_float32x4 c_y = cv::v_setall_f32(static_cast<float>(first->c));
+          const cv::v_float32x4 max_residual = cv::v_setall_f32(static_cast<float>(options_.max_residual_px));
+          cv::v_float32x4 explained_lanes = cv::v_setzero_f32();
+          for (std::size_t i = 0; i < points.slots; i += kLanes) {
+            const cv::v_float32x4 residual =
+                cv::v_abs(a + b * cv::v_load(points.dx.data() + i) + c_y * cv::v_load(points.dy.data() + i) -
+                          cv::v_load(points.value.data() + i));
+            const cv::v_float32x4 explained =
+                cv::v_select(residual <= max_residual, cv::v_load(points.in.data() + i), cv::v_setzero_f32());
+            cv::v_store(points.explained.data() + i, explained);
+            explained_lanes += explained;
+          }
+          const auto explained_count = static_cast<int>(cv::v_reduce_sum(explained_lanes));
           std::optional<Plane> plane = first;
-          if (explained_count < all.count) {  // once more without the points the first plane does not explain
-            Moments explained;
-            for (std::size_t i = 0; i < points.count; ++i) explained.add(points, i, explains(i));
-            plane = explained.plane(options_);
+          if (explained_count < all.count) {  // once more without the others
+            plane = Moments(points, points.explained.data()).plane(options_);
           }
           if (plane && std::fabs(plane->a) <= options_.max_code_offset_px) out = static_cast<float>(own + plane->a);
         }

@@ -252,8 +252,14 @@ TEST(GrayDecisionTest, BlurredBoundaryPixelsAreDecodedBetweenAdjacentCodes) {
 // white 0.5 and black 0.02 (pixel 8: 0.025, under the noise threshold), noiseless, column bits 0.2 apart but where
 // stated, the row bit clear, a 0.002 floor so that the 2 % rule (0.0096) is the one that acts. Each pixel's decision,
 // position, T entry and outcome follow by construction.
-TEST(GrayDecisionTest, OnePixelPerOutcome) {
+// Each outcome once, with the pixels rotated along the row by every shift: the decision takes four pixels at a time
+// and the rest of a row one by one, so each pixel is decided both ways.
+class GrayDecisionRotationTest : public ::testing::TestWithParam<int> {};
+
+TEST_P(GrayDecisionRotationTest, OnePixelPerOutcome) {
   constexpr int kPixels = 10;
+  // Built pixel c lies in camera column at(c).
+  const auto at = [](std::size_t c) { return (c + static_cast<std::size_t>(GetParam())) % kPixels; };
   const cv::Size camera{kPixels, 1};
   const cv::Size projector{12, 2};
   TransportSetup setup;
@@ -264,8 +270,8 @@ TEST(GrayDecisionTest, OnePixelPerOutcome) {
   setup.thresholds = resolve_thresholds(setup.thresholds, 8);
   CompressedTransport transport = make_empty_transport(setup);
   cv::Mat white(camera, CV_32F, cv::Scalar(0.5)), black(camera, CV_32F, cv::Scalar(0.02));
-  white.at<float>(0, 8) = 0.025f;
-  transport.flags[9] = kFlagShadow;
+  white.at<float>(0, static_cast<int>(at(8))) = 0.025f;
+  transport.flags[at(9)] = kFlagShadow;
   GrayDecision decision(white, black);
   const auto gray = [](std::uint32_t code) { return code ^ (code >> 1); };
   // The accumulators' code (each bit by its sign) and the masks of its undecided bits, with their pattern - inverse:
@@ -283,18 +289,19 @@ TEST(GrayDecisionTest, OnePixelPerOutcome) {
   for (int bit = 0; bit < 4; ++bit) {
     const std::uint32_t mask = gray_bit_mask(setup, GrayAxis::kColumns, bit);
     cv::Mat pattern(camera, CV_32F), inverse(camera, CV_32F);
-    for (int c = 0; c < kPixels; ++c) {
+    for (std::size_t c = 0; c < kPixels; ++c) {
       const bool set = (gray(built[c].column) & mask) != 0;
       const float difference = (built[c].undecided_masks & mask) != 0 ? built[c].difference : (set ? 0.2f : -0.2f);
-      const float middle = 0.5f * (white.at<float>(0, c) + black.at<float>(0, c));
-      pattern.at<float>(0, c) = middle + 0.5f * difference;
-      inverse.at<float>(0, c) = middle - 0.5f * difference;
+      const int u = static_cast<int>(at(c));
+      const float middle = 0.5f * (white.at<float>(0, u) + black.at<float>(0, u));
+      pattern.at<float>(0, u) = middle + 0.5f * difference;
+      inverse.at<float>(0, u) = middle - 0.5f * difference;
     }
     decision.add_gray_pair(GrayAxis::kColumns, mask, pattern, inverse);
   }
   const cv::Mat mean = 0.5 * (white + black);
   decision.add_gray_pair(GrayAxis::kRows, gray_bit_mask(setup, GrayAxis::kRows, 0), mean - 0.1, mean + 0.1);
-  for (int c = 0; c < kPixels; ++c) transport.pixel_x[static_cast<std::size_t>(c)] = built[c].column;
+  for (std::size_t c = 0; c < kPixels; ++c) transport.pixel_x[at(c)] = built[c].column;
 
   const GrayDecisionCounts counts = decision.decide(transport);
   EXPECT_EQ(counts.lit, 9u);
@@ -311,25 +318,28 @@ TEST(GrayDecisionTest, OnePixelPerOutcome) {
                                   NAN};
   const std::int32_t entries[kPixels] = {5, 5, -1, -1, -1, -1, 11, 11, -1, -1};
   for (std::size_t c = 0; c < kPixels; ++c) {
-    EXPECT_EQ(pixel_outcome(transport, c), outcomes[c]) << "pixel " << c;
+    const std::size_t u = at(c);
+    EXPECT_EQ(pixel_outcome(transport, u), outcomes[c]) << "pixel " << c;
     if (std::isnan(columns[c])) {
-      EXPECT_TRUE(std::isnan(transport.correspondence[2 * c])) << "pixel " << c;
+      EXPECT_TRUE(std::isnan(transport.correspondence[2 * u])) << "pixel " << c;
     } else {
-      EXPECT_NEAR(transport.correspondence[2 * c], columns[c], 1e-5f) << "pixel " << c;
-      EXPECT_FLOAT_EQ(transport.correspondence[2 * c + 1], 0.0f) << "pixel " << c;
-      EXPECT_NE(transport.flags[c] & kFlagValid, 0) << "pixel " << c;
+      EXPECT_NEAR(transport.correspondence[2 * u], columns[c], 1e-5f) << "pixel " << c;
+      EXPECT_FLOAT_EQ(transport.correspondence[2 * u + 1], 0.0f) << "pixel " << c;
+      EXPECT_NE(transport.flags[u] & kFlagValid, 0) << "pixel " << c;
     }
-    EXPECT_EQ(transport.indices[c], entries[c]) << "pixel " << c;
+    EXPECT_EQ(transport.indices[u], entries[c]) << "pixel " << c;
   }
-  for (const std::size_t c : {2u, 3u}) EXPECT_NE(transport.flags[c] & kFlagLowContrast, 0) << "pixel " << c;
-  for (const std::size_t c : {2u, 3u, 4u, 5u, 9u}) EXPECT_EQ(transport.flags[c] & kFlagValid, 0) << "pixel " << c;
+  for (const std::size_t c : {2u, 3u}) EXPECT_NE(transport.flags[at(c)] & kFlagLowContrast, 0) << "pixel " << c;
+  for (const std::size_t c : {2u, 3u, 4u, 5u, 9u}) EXPECT_EQ(transport.flags[at(c)] & kFlagValid, 0) << "pixel " << c;
   // T's single entry per row and the direct energy: white - black.
-  EXPECT_FLOAT_EQ(transport.weights[1], 0.48f);
-  EXPECT_FLOAT_EQ(transport.direct_energy[1], 0.48f);
-  EXPECT_FLOAT_EQ(transport.direct_energy[8], 0.0f);
-  EXPECT_NE(transport.flags[8] & kFlagNoSignal, 0);
-  EXPECT_NE(transport.flags[4] & kFlagOutOfRange, 0);
+  EXPECT_FLOAT_EQ(transport.weights[at(1)], 0.48f);
+  EXPECT_FLOAT_EQ(transport.direct_energy[at(1)], 0.48f);
+  EXPECT_FLOAT_EQ(transport.direct_energy[at(8)], 0.0f);
+  EXPECT_NE(transport.flags[at(8)] & kFlagNoSignal, 0);
+  EXPECT_NE(transport.flags[at(4)] & kFlagOutOfRange, 0);
 }
+
+INSTANTIATE_TEST_SUITE_P(Shifts, GrayDecisionRotationTest, ::testing::Range(0, 10));
 
 // The transport stage on a capture written to disk: Gray-code-only captures get the refined correspondences,
 // captures with the dot grid keep their dot centroids bit for bit.
