@@ -37,7 +37,7 @@ constexpr std::size_t kLanes = cv::v_float32x4::nlanes;
 // bit that differs. Only the points that exist are kept, in the order of their pair's first pixel, right before down,
 // so a window reads no empty pair (the empty ones' branches cost more than the fits). A point's camera position is its
 // pair's first pixel plus the crossing's fraction along x (right) or y (down), so a window's offsets are small
-// integers plus a fraction, exact in float wherever the image is.
+// integers plus a fraction, as precise in float at the image's far corner as at its origin.
 struct BoundaryRows {
   int width = 0;
   // Row v's points whose pair's first pixel is u or right of it start at first_at[v (width + 1) + u]; u = width: the
