@@ -1,4 +1,4 @@
-// glibc's mallopt: a fixed mmap threshold at its 64-bit maximum, and no trimming.
+// glibc's mallopt: no block mapped on its own, and no trimming.
 #include "host/core/freed_memory.h"
 
 #include <climits>
@@ -11,8 +11,7 @@ namespace rfrecon {
 
 bool keep_freed_memory() {
 #ifdef __GLIBC__
-  constexpr int kLargestHeapBlock = 32 << 20;  // glibc's largest mmap threshold on 64-bit targets
-  return mallopt(M_MMAP_THRESHOLD, kLargestHeapBlock) == 1 && mallopt(M_TRIM_THRESHOLD, INT_MAX) == 1;
+  return mallopt(M_MMAP_MAX, 0) == 1 && mallopt(M_TRIM_THRESHOLD, INT_MAX) == 1;
 #else
   return false;
 #endif

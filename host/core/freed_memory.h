@@ -4,10 +4,10 @@
 
 namespace rfrecon {
 
-// Process-wide, from the call on: glibc's malloc serves blocks of up to 32 MiB from its heaps (not from mappings of
-// their own, unmapped when freed) and no longer trims the heaps' free tops. Returns false, changing nothing, where
-// malloc is not glibc's. Larger blocks (a transport's rows: hand `storage` to compute_transport_on_devices) are still
-// mapped on their own.
+// Process-wide, from the call on: glibc's malloc serves every block from its heaps, none from a mapping of its own
+// (unmapped when freed, whatever its size: a 4096 x 2730 camera's images are 45 MB each), and no longer trims the
+// heaps' free tops. A block larger than a thread's heap (64 MiB) that a thread other than the first allocates is still
+// mapped on its own. Returns false, changing nothing, where malloc is not glibc's.
 bool keep_freed_memory();
 
 }  // namespace rfrecon
