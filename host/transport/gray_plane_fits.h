@@ -53,8 +53,9 @@ struct Band {
   std::size_t field_slots = 0;
 };
 
+constexpr std::size_t kScratchFields = 7;  // a window's fields: offsets, value, exponent, weight and two masks
+
 // Slots for one window's candidates: two points per pixel pair of (2 radius + 2)^2 pixels, and a last whole lane.
-constexpr std::size_t kScratchFields = 7;
 constexpr std::size_t window_slots(int radius_px) {
   const std::size_t side = 2 * static_cast<std::size_t>(radius_px) + 2;
   return 2 * side * side + kMaxLanes;
